@@ -1,0 +1,24 @@
+# carbonmesh: two commands. `make run` builds and runs the main job on a built-in shape; `make test` runs all tests.
+BUILD ?= build
+JOBS  ?= $(shell nproc)
+OUT   ?= out
+
+.PHONY: all bootstrap build run test clean
+
+all: build
+
+bootstrap:
+	./scripts/bootstrap
+
+build: bootstrap
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	$(BUILD)/tools/carbonmesh/carbonmesh run -o $(OUT)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD)

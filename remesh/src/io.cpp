@@ -1,0 +1,260 @@
+#include "carbonmesh/remesh/io.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <OpenMesh/Core/IO/IOManager.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+
+#include "carbonmesh/remesh/atomic_file.hpp"
+#include "carbonmesh/remesh/error.hpp"
+#include "soup_importer.hpp"
+
+namespace carbonmesh {
+namespace {
+
+std::string lower_extension(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool is_supported_input(const std::string& ext) {
+  return ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl";
+}
+
+// OpenMesh's readers print to omerr/omlog; carbonmesh reports problems itself.
+struct QuietOpenMesh {
+  QuietOpenMesh() {
+    omerr().disable();
+    omlog().disable();
+    omout().disable();
+  }
+};
+
+struct PointHash {
+  std::size_t operator()(const Vec3& p) const {
+    std::size_t h = 1469598103934665603ull;
+    for (int i = 0; i < 3; ++i) {
+      std::uint64_t bits;
+      double v = p[i] == 0.0 ? 0.0 : p[i];  // -0 == +0
+      std::memcpy(&bits, &v, sizeof bits);
+      h = (h ^ bits) * 1099511628211ull;
+    }
+    return h;
+  }
+};
+
+}  // namespace
+
+PolygonSoup read_polygon_soup(const std::filesystem::path& file) {
+  static const QuietOpenMesh quiet;
+  const std::string name = file.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw InputError(name + ": no such file");
+  if (std::filesystem::is_directory(file, ec)) throw InputError(name + ": is a folder, not a mesh file");
+  const std::string ext = lower_extension(file);
+  if (!is_supported_input(ext))
+    throw InputError(name + ": unsupported format '" + ext + "' (expected .off, .obj, .ply or .stl)");
+  {
+    std::ifstream probe(file, std::ios::binary);
+    if (!probe) throw InputError(name + ": cannot be opened for reading");
+    if (probe.peek() == std::ifstream::traits_type::eof()) throw InputError(name + ": empty file");
+  }
+  PolygonSoup soup;
+  detail::SoupImporter importer(soup);
+  OpenMesh::IO::Options options;
+  bool ok = false;
+  try {
+    ok = OpenMesh::IO::IOManager().read(name, importer, options);
+  } catch (const std::exception& e) {
+    throw InputError(name + ": cannot be parsed as " + ext.substr(1) + " (" + e.what() + ")");
+  }
+  if (!ok) throw InputError(name + ": cannot be parsed as " + ext.substr(1) + " (malformed or truncated)");
+  if (soup.points.empty()) throw InputError(name + ": no vertices");
+  if (soup.polygons.empty()) throw InputError(name + ": no faces");
+  return soup;
+}
+
+TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const LoadSettings& settings,
+                   LoadReport* report_out) {
+  LoadReport report;
+  report.input_vertices = soup.points.size();
+  report.input_polygons = soup.polygons.size();
+  const int n_points = static_cast<int>(soup.points.size());
+
+  for (int i = 0; i < n_points; ++i) {
+    const Vec3& p = soup.points[static_cast<std::size_t>(i)];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw InputError(source + ": vertex " + std::to_string(i) + " has a non-finite (NaN or Inf) coordinate");
+  }
+  if (soup.polygons.empty()) throw InputError(source + ": no faces");
+
+  // Triangulate (fan), checking indices.
+  std::vector<std::array<int, 3>> triangles;
+  triangles.reserve(soup.polygons.size());
+  for (std::size_t f = 0; f < soup.polygons.size(); ++f) {
+    const auto& poly = soup.polygons[f];
+    if (poly.size() < 3)
+      throw InputError(source + ": face " + std::to_string(f) + " has " + std::to_string(poly.size()) +
+                       " corners (at least 3 needed)");
+    for (int v : poly)
+      if (v < 0 || v >= n_points)
+        throw InputError(source + ": face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+                         ", out of range (the file has " + std::to_string(n_points) + " vertices)");
+    if (poly.size() > 3) ++report.triangulated_polygons;
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k) triangles.push_back({poly[0], poly[k], poly[k + 1]});
+  }
+
+  // Duplicate vertices: the same position as an earlier referenced vertex.
+  std::vector<char> referenced(soup.points.size(), 0);
+  for (const auto& t : triangles)
+    for (int v : t) referenced[static_cast<std::size_t>(v)] = 1;
+  std::vector<int> remap(soup.points.size());
+  std::unordered_map<Vec3, int, PointHash> first_at;
+  int dup_example_a = -1, dup_example_b = -1;
+  for (int i = 0; i < n_points; ++i) {
+    remap[static_cast<std::size_t>(i)] = i;
+    if (!referenced[static_cast<std::size_t>(i)]) {
+      ++report.unreferenced_vertices;
+      continue;
+    }
+    Vec3 key = soup.points[static_cast<std::size_t>(i)];
+    for (int c = 0; c < 3; ++c)
+      if (key[c] == 0.0) key[c] = 0.0;
+    auto [it, inserted] = first_at.emplace(key, i);
+    if (!inserted) {
+      ++report.duplicate_vertices;
+      remap[static_cast<std::size_t>(i)] = it->second;
+      if (dup_example_a < 0) dup_example_a = it->second, dup_example_b = i;
+    }
+  }
+  if (report.duplicate_vertices > 0 && !settings.repair)
+    throw InputError(source + ": " + std::to_string(report.duplicate_vertices) +
+                     " duplicate vertices (e.g. vertices " + std::to_string(dup_example_a) + " and " +
+                     std::to_string(dup_example_b) + " share a position); use --repair to merge them");
+
+  // Degenerate and duplicate faces.
+  std::vector<std::array<int, 3>> kept;
+  kept.reserve(triangles.size());
+  std::map<std::array<int, 3>, std::size_t> seen;
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    std::array<int, 3> t = triangles[f];
+    for (int& v : t) v = remap[static_cast<std::size_t>(v)];
+    const Vec3& a = soup.points[static_cast<std::size_t>(t[0])];
+    const Vec3& b = soup.points[static_cast<std::size_t>(t[1])];
+    const Vec3& c = soup.points[static_cast<std::size_t>(t[2])];
+    const double longest2 = std::max({(b - a).sqrnorm(), (c - b).sqrnorm(), (a - c).sqrnorm()});
+    const double area2 = OpenMesh::cross(b - a, c - a).norm();
+    const bool degenerate = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || area2 <= 1e-12 * longest2;
+    if (degenerate) {
+      ++report.degenerate_faces;
+      if (!settings.repair)
+        throw InputError(source + ": triangle " + std::to_string(f) + " (vertices " + std::to_string(t[0]) +
+                         ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
+                         ") is degenerate (zero area); use --repair to remove degenerate faces");
+      continue;
+    }
+    std::array<int, 3> key = t;
+    std::sort(key.begin(), key.end());
+    auto [it, inserted] = seen.emplace(key, f);
+    if (!inserted) {
+      ++report.duplicate_faces;
+      if (!settings.repair)
+        throw InputError(source + ": triangle " + std::to_string(f) + " duplicates triangle " +
+                         std::to_string(it->second) + "; use --repair to remove duplicate faces");
+      continue;
+    }
+    kept.push_back(t);
+  }
+  if (kept.empty()) throw InputError(source + ": no faces left (all are degenerate)");
+
+  // Edge manifoldness and orientation, before OpenMesh sees the faces.
+  std::map<std::pair<int, int>, std::array<int, 3>> edge_use;  // (min,max) -> {count, first dir, first face}
+  for (std::size_t f = 0; f < kept.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = kept[f][static_cast<std::size_t>(k)], b = kept[f][static_cast<std::size_t>((k + 1) % 3)];
+      const auto key = std::minmax(a, b);
+      const int dir = a < b ? 1 : -1;
+      auto [it, inserted] = edge_use.emplace(std::pair<int, int>(key.first, key.second),
+                                             std::array<int, 3>{0, dir, static_cast<int>(f)});
+      auto& use = it->second;
+      ++use[0];
+      if (use[0] > 2)
+        throw InputError(source + ": non-manifold edge between vertices " + std::to_string(key.first) +
+                         " and " + std::to_string(key.second) + " (shared by more than two faces)");
+      if (!inserted && use[1] == dir)
+        throw InputError(source + ": inconsistent orientation between faces " + std::to_string(use[2]) +
+                         " and " + std::to_string(f) + " at the edge between vertices " +
+                         std::to_string(key.first) + " and " + std::to_string(key.second));
+    }
+  }
+
+  // Build the half-edge mesh; unreferenced vertices are dropped.
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> handle(soup.points.size());
+  std::vector<int> original_index;
+  for (int i = 0; i < n_points; ++i) {
+    if (!referenced[static_cast<std::size_t>(i)] || remap[static_cast<std::size_t>(i)] != i) continue;
+    handle[static_cast<std::size_t>(i)] = mesh.add_vertex(soup.points[static_cast<std::size_t>(i)]);
+    original_index.push_back(i);
+  }
+  for (const auto& t : kept) {
+    const auto fh = mesh.add_face(handle[static_cast<std::size_t>(t[0])], handle[static_cast<std::size_t>(t[1])],
+                                  handle[static_cast<std::size_t>(t[2])]);
+    if (!fh.is_valid())
+      throw InputError(source + ": non-manifold vertex at one of vertices " + std::to_string(t[0]) + ", " +
+                       std::to_string(t[1]) + ", " + std::to_string(t[2]) +
+                       " (its faces do not form a single fan)");
+  }
+  for (auto vh : mesh.vertices()) {
+    if (!mesh.is_manifold(vh))
+      throw InputError(source + ": non-manifold (pinched) vertex " +
+                       std::to_string(original_index[static_cast<std::size_t>(vh.idx())]) +
+                       " (two or more fans meet there)");
+  }
+  mesh.update_normals();
+
+  report.repaired = settings.repair && (report.duplicate_vertices + report.degenerate_faces +
+                                        report.duplicate_faces) > 0;
+  if (report.triangulated_polygons > 0)
+    spdlog::info("{}: triangulated {} polygons with more than three corners", source,
+                 report.triangulated_polygons);
+  if (report.unreferenced_vertices > 0)
+    spdlog::warn("{}: removed {} vertices used by no face", source, report.unreferenced_vertices);
+  if (report.repaired)
+    spdlog::warn("{}: repaired: merged {} duplicate vertices, removed {} degenerate and {} duplicate faces",
+                 source, report.duplicate_vertices, report.degenerate_faces, report.duplicate_faces);
+  if (report_out) *report_out = report;
+  return mesh;
+}
+
+TriMesh load_mesh(const std::filesystem::path& file, const LoadSettings& settings, LoadReport* report) {
+  const PolygonSoup soup = read_polygon_soup(file);
+  TriMesh mesh = build_mesh(soup, file.string(), settings, report);
+  spdlog::debug("{}: loaded {} vertices, {} faces", file.string(), mesh.n_vertices(), mesh.n_faces());
+  return mesh;
+}
+
+void save_mesh(const TriMesh& mesh, const std::filesystem::path& file) {
+  const std::string ext = lower_extension(file);
+  if (!(ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl"))
+    throw InputError(file.string() + ": unsupported output format '" + ext +
+                     "' (expected .off, .obj, .ply or .stl)");
+  if (file.has_parent_path() && !std::filesystem::is_directory(file.parent_path()))
+    throw InputError(file.string() + ": folder " + file.parent_path().string() + " does not exist");
+  write_atomically(file, [&](const std::filesystem::path& tmp) {
+    OpenMesh::IO::Options options;
+    if (!OpenMesh::IO::write_mesh(mesh, tmp.string(), options, 17))
+      throw InputError(file.string() + ": could not be written");
+  });
+}
+
+}  // namespace carbonmesh

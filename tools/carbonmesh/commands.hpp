@@ -1,0 +1,13 @@
+#pragma once
+// Each subcommand registers itself on the app and returns the action to run after parsing.
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace carbonmesh::cli {
+
+using Action = std::function<int()>;
+
+// Registers a subcommand; `action` is set to its run function when it is selected.
+void add_stats_command(CLI::App& app, Action& action);
+
+}  // namespace carbonmesh::cli

@@ -1,0 +1,54 @@
+// carbonmesh: from a triangle surface to a LAMMPS-ready sp2 carbon structure.
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "carbonmesh/remesh/error.hpp"
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  auto logger = spdlog::stderr_color_mt("carbonmesh");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+
+  CLI::App app{"carbonmesh: turns a triangle surface into an sp2 carbon nanostructure for LAMMPS"};
+  app.set_version_flag("--version", std::string("carbonmesh ") + CARBONMESH_VERSION);
+  app.require_subcommand(1);
+  int verbosity = 0;
+  bool quiet = false;
+  app.add_flag("-v,--verbose", verbosity, "more log output (-vv for debug)");
+  app.add_flag("-q,--quiet", quiet, "only warnings and errors");
+
+  carbonmesh::cli::Action action;
+  carbonmesh::cli::add_stats_command(app, action);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "carbonmesh: error: " << e.what() << " (see carbonmesh --help or carbonmesh COMMAND --help)\n";
+    return carbonmesh::kExitBadInput;
+  }
+  spdlog::set_level(quiet ? spdlog::level::warn
+                          : verbosity >= 2 ? spdlog::level::trace
+                          : verbosity == 1 ? spdlog::level::debug
+                                           : spdlog::level::info);
+  try {
+    return action ? action() : 0;
+  } catch (const carbonmesh::InputError& e) {
+    std::cerr << "carbonmesh: error: " << e.what() << "\n";
+    return carbonmesh::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "carbonmesh: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}
