@@ -1,0 +1,50 @@
+#pragma once
+// Built-in shapes: closed, well-shaped triangle meshes generated in code. They are the default input of
+// `make run` and the fixtures of the tests; the repository ships no other models.
+#include <string>
+#include <vector>
+
+#include "carbonmesh/remesh/mesh.hpp"
+
+namespace carbonmesh {
+
+// Icosahedron subdivided `subdivisions` times (each edge split in two), projected onto the sphere.
+// Every vertex has valence 6 except the 12 of the icosahedron (valence 5).
+struct SphereShape {
+  double radius = 10.0;
+  int subdivisions = 3;
+};
+TriMesh make_icosphere(const SphereShape& shape);
+
+// A tube of radius `minor_radius` around a circle of radius `major_radius` (genus 1).
+// `edge` is the target edge length (0: chosen so the tube has 24 segments around).
+struct TorusShape {
+  double major_radius = 10.0;
+  double minor_radius = 4.0;
+  double edge = 0.0;
+};
+TriMesh make_torus(const TorusShape& shape);
+
+// A closed helical tube (a "nanospring"): a tube of radius `tube_radius` around a helix of radius `radius`,
+// rising `pitch` per turn over `turns` turns, closed by hemispherical caps (genus 0).
+struct HelixShape {
+  double radius = 10.0;
+  double pitch = 12.0;
+  double turns = 2.0;
+  double tube_radius = 3.0;
+  double edge = 0.0;  // target edge length (0: 16 segments around the tube)
+};
+TriMesh make_helix(const HelixShape& shape);
+
+// A cylinder of radius `radius` and straight length `length` closed by hemispheres (genus 0).
+struct CapsuleShape {
+  double radius = 5.0;
+  double length = 20.0;
+  double edge = 0.0;  // target edge length (0: 24 segments around)
+};
+TriMesh make_capsule(const CapsuleShape& shape);
+
+// Names accepted by make_shape: "sphere", "torus", "helix", "capsule".
+const std::vector<std::string>& shape_names();
+
+}  // namespace carbonmesh

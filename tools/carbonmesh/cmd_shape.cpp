@@ -1,0 +1,62 @@
+// `carbonmesh shape sphere|torus|helix|capsule [size options] -o OUT`
+#include <spdlog/spdlog.h>
+
+#include "carbonmesh/remesh/io.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+#include "commands.hpp"
+
+namespace carbonmesh::cli {
+
+void add_shape_command(CLI::App& app, Action& action) {
+  struct Options {
+    std::string name, output;
+    SphereShape sphere;
+    TorusShape torus;
+    HelixShape helix;
+    CapsuleShape capsule;
+    double edge = 0;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("shape", "write a built-in closed shape (sizes in the mesh's units, e.g. A)");
+  cmd->add_option("name", opt->name, "sphere | torus | helix | capsule")
+      ->required()
+      ->check(CLI::IsMember(shape_names()));
+  cmd->add_option("-o,--output", opt->output, "output mesh (.off .obj .ply .stl)")->required();
+  cmd->add_option("--radius", opt->sphere.radius, "sphere radius / helix radius / capsule radius")
+      ->capture_default_str();
+  cmd->add_option("--subdivisions", opt->sphere.subdivisions, "sphere: icosahedron subdivisions (0-9)")
+      ->capture_default_str();
+  cmd->add_option("--major", opt->torus.major_radius, "torus: radius of the centre circle")->capture_default_str();
+  cmd->add_option("--minor", opt->torus.minor_radius, "torus: tube radius")->capture_default_str();
+  cmd->add_option("--pitch", opt->helix.pitch, "helix: rise per turn")->capture_default_str();
+  cmd->add_option("--turns", opt->helix.turns, "helix: number of turns")->capture_default_str();
+  cmd->add_option("--tube-radius", opt->helix.tube_radius, "helix: tube radius")->capture_default_str();
+  cmd->add_option("--length", opt->capsule.length, "capsule: length of the straight part")->capture_default_str();
+  cmd->add_option("--edge", opt->edge, "torus/helix/capsule: target edge length (0: default resolution)")
+      ->capture_default_str();
+  cmd->callback([&action, opt, cmd] {
+    action = [opt, cmd]() -> int {
+      TriMesh mesh;
+      const bool radius_given = cmd->count("--radius") > 0;
+      if (opt->name == "sphere") {
+        mesh = make_icosphere(opt->sphere);
+      } else if (opt->name == "torus") {
+        opt->torus.edge = opt->edge;
+        mesh = make_torus(opt->torus);
+      } else if (opt->name == "helix") {
+        if (radius_given) opt->helix.radius = opt->sphere.radius;
+        opt->helix.edge = opt->edge;
+        mesh = make_helix(opt->helix);
+      } else {
+        if (radius_given) opt->capsule.radius = opt->sphere.radius;
+        opt->capsule.edge = opt->edge;
+        mesh = make_capsule(opt->capsule);
+      }
+      save_mesh(mesh, opt->output);
+      spdlog::info("{}: {} with {} vertices, {} faces", opt->output, opt->name, mesh.n_vertices(), mesh.n_faces());
+      return 0;
+    };
+  });
+}
+
+}  // namespace carbonmesh::cli
