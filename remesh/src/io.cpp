@@ -16,6 +16,7 @@
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "soup_importer.hpp"
+#include "text_formats.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -69,15 +70,21 @@ PolygonSoup read_polygon_soup(const std::filesystem::path& file) {
     if (probe.peek() == std::ifstream::traits_type::eof()) throw InputError(name + ": empty file");
   }
   PolygonSoup soup;
-  detail::SoupImporter importer(soup);
-  OpenMesh::IO::Options options;
-  bool ok = false;
-  try {
-    ok = OpenMesh::IO::IOManager().read(name, importer, options);
-  } catch (const std::exception& e) {
-    throw InputError(name + ": cannot be parsed as " + ext.substr(1) + " (" + e.what() + ")");
+  if (ext == ".off") {
+    soup = detail::read_off(file);
+  } else if (ext == ".obj") {
+    soup = detail::read_obj(file);
+  } else {  // PLY and STL, binary or text: OpenMesh's readers
+    detail::SoupImporter importer(soup);
+    OpenMesh::IO::Options options;
+    bool ok = false;
+    try {
+      ok = OpenMesh::IO::IOManager().read(name, importer, options);
+    } catch (const std::exception& e) {
+      throw InputError(name + ": cannot be parsed as " + ext.substr(1) + " (" + e.what() + ")");
+    }
+    if (!ok) throw InputError(name + ": cannot be parsed as " + ext.substr(1) + " (malformed or truncated)");
   }
-  if (!ok) throw InputError(name + ": cannot be parsed as " + ext.substr(1) + " (malformed or truncated)");
   if (soup.points.empty()) throw InputError(name + ": no vertices");
   if (soup.polygons.empty()) throw InputError(name + ": no faces");
   return soup;
@@ -197,12 +204,15 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
     }
   }
 
-  // Build the half-edge mesh; unreferenced vertices are dropped.
+  // Build the half-edge mesh; vertices no kept face uses are dropped.
+  std::vector<char> used(soup.points.size(), 0);
+  for (const auto& t : kept)
+    for (int v : t) used[static_cast<std::size_t>(v)] = 1;
   TriMesh mesh;
   std::vector<TriMesh::VertexHandle> handle(soup.points.size());
   std::vector<int> original_index;
   for (int i = 0; i < n_points; ++i) {
-    if (!referenced[static_cast<std::size_t>(i)] || remap[static_cast<std::size_t>(i)] != i) continue;
+    if (!used[static_cast<std::size_t>(i)]) continue;
     handle[static_cast<std::size_t>(i)] = mesh.add_vertex(soup.points[static_cast<std::size_t>(i)]);
     original_index.push_back(i);
   }
@@ -251,9 +261,16 @@ void save_mesh(const TriMesh& mesh, const std::filesystem::path& file) {
   if (file.has_parent_path() && !std::filesystem::is_directory(file.parent_path()))
     throw InputError(file.string() + ": folder " + file.parent_path().string() + " does not exist");
   write_atomically(file, [&](const std::filesystem::path& tmp) {
-    OpenMesh::IO::Options options;
-    if (!OpenMesh::IO::write_mesh(mesh, tmp.string(), options, 17))
-      throw InputError(file.string() + ": could not be written");
+    bool ok = false;
+    if (ext == ".off") {
+      ok = detail::write_off(mesh, tmp);
+    } else if (ext == ".obj") {
+      ok = detail::write_obj(mesh, tmp);
+    } else {  // PLY and STL through OpenMesh (single precision)
+      OpenMesh::IO::Options options;
+      ok = OpenMesh::IO::write_mesh(mesh, tmp.string(), options, 9);
+    }
+    if (!ok) throw InputError(file.string() + ": could not be written");
   });
 }
 

@@ -1,0 +1,170 @@
+// Mesh IO: round trips of every format and validation of bad input (message and exit code 2).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/io.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+#include "test_paths.hpp"
+
+namespace fs = std::filesystem;
+using namespace carbonmesh;
+
+namespace {
+
+fs::path temp_dir() {
+  const auto dir = fs::temp_directory_path() / ("carbonmesh-test-io-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path write_file(const std::string& name, const std::string& text) {
+  const auto path = temp_dir() / name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+struct RunResult {
+  int exit_code;
+  std::string output;
+};
+
+RunResult run_cli(const std::string& args) {
+  const auto out = temp_dir() / "cli-output.txt";
+  const std::string command = std::string(CARBONMESH_CLI) + " " + args + " > " + out.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(out);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+// An OFF file from vertex and face lines.
+std::string off(const std::string& vertices, const std::string& faces, int nv, int nf) {
+  return "OFF\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n" + vertices + faces;
+}
+
+const std::string kTetraVertices = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+const std::string kTetraFaces = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+
+}  // namespace
+
+TEST(MeshIO, RoundTripEveryFormatKeepsTheMesh) {
+  const TriMesh sphere = make_icosphere({10.0, 2});
+  const Topology before = topology(sphere);
+  const EdgeStats edges_before = edge_stats(sphere);
+  for (const std::string ext : {".off", ".obj", ".ply", ".stl"}) {
+    const auto path = temp_dir() / ("sphere" + ext);
+    save_mesh(sphere, path);
+    const TriMesh loaded = load_mesh(path);
+    const Topology after = topology(loaded);
+    EXPECT_EQ(after.vertices, before.vertices) << ext;
+    EXPECT_EQ(after.faces, before.faces) << ext;
+    EXPECT_TRUE(after.same_type(before)) << ext;
+    // OFF and OBJ are read in double precision; PLY and STL through OpenMesh in single precision.
+    const double tolerance = (ext == ".stl" || ext == ".ply") ? 1e-5 : 1e-12;
+    EXPECT_NEAR(edge_stats(loaded).mean, edges_before.mean, tolerance) << ext;
+  }
+}
+
+TEST(MeshIO, SaveLeavesNoPartialFile) {
+  const auto dir = temp_dir() / "atomic";
+  fs::create_directories(dir);
+  save_mesh(make_icosphere({1.0, 1}), dir / "a.off");
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    ++files;
+    EXPECT_EQ(entry.path().filename(), "a.off");
+  }
+  EXPECT_EQ(files, 1);
+}
+
+TEST(MeshIO, PolygonsAreTriangulated) {
+  // A cube of quads.
+  const auto path = write_file("cube.off", off("0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n",
+                                               "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n",
+                                               8, 6));
+  LoadReport report;
+  const TriMesh mesh = load_mesh(path, {}, &report);
+  EXPECT_EQ(mesh.n_faces(), 12u);
+  EXPECT_EQ(report.triangulated_polygons, 6u);
+  EXPECT_EQ(topology(mesh).genus, 0);
+}
+
+struct BadInput {
+  std::string name;      // fixture file name
+  std::string contents;  // file contents
+  std::string expected;  // part of the one-line message
+};
+
+void PrintTo(const BadInput& bad, std::ostream* os) { *os << bad.name; }
+
+class BadInputTest : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(BadInputTest, ClearOneLineErrorAndExitCode2) {
+  const BadInput& bad = GetParam();
+  fs::path path = temp_dir() / bad.name;
+  if (bad.name != "missing.off") path = write_file(bad.name, bad.contents);
+  EXPECT_THROW(load_mesh(path), InputError);
+  const RunResult result = run_cli("stats " + path.string());
+  EXPECT_EQ(result.exit_code, kExitBadInput) << result.output;
+  EXPECT_NE(result.output.find(path.string()), std::string::npos) << "message names the file: " << result.output;
+  EXPECT_NE(result.output.find(bad.expected), std::string::npos) << result.output;
+  EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << "one line: " << result.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Classes, BadInputTest,
+    ::testing::Values(
+        BadInput{"missing.off", "", "no such file"},
+        BadInput{"empty.off", "", "empty file"},
+        BadInput{"nofaces.off", off(kTetraVertices, "", 4, 0), "no faces"},
+        BadInput{"nan.off", off("0 0 0\n1 0 nan\n0 1 0\n0 0 1\n", kTetraFaces, 4, 4), "non-finite"},
+        BadInput{"inf.obj", "v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n", "non-finite"},
+        BadInput{"nonmanifold_edge.off",
+                 off(kTetraVertices + "1 1 1\n", kTetraFaces + "3 0 1 4\n", 5, 5), "non-manifold edge"},
+        BadInput{"pinched.off",
+                 off("0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n", "3 0 1 2\n3 0 3 4\n", 5, 2), "non-manifold"},
+        BadInput{"degenerate.off", off("0 0 0\n1 0 0\n2 0 0\n0 1 0\n", "3 0 1 2\n3 0 1 3\n", 4, 2),
+                 "degenerate"},
+        BadInput{"duplicate_vertex.off",
+                 off("0 0 0\n1 0 0\n0 1 0\n1 0 0\n1 1 0\n", "3 0 1 2\n3 3 4 2\n", 5, 2), "duplicate vertices"},
+        BadInput{"flipped.off", off("0 0 0\n1 0 0\n0 1 0\n1 1 0\n", "3 0 1 2\n3 1 2 3\n", 4, 2),
+                 "inconsistent orientation"},
+        BadInput{"unknown.xyz", "1 2 3\n", "unsupported format"}),
+    [](const auto& info) {
+      std::string n = info.param.name;
+      std::replace(n.begin(), n.end(), '.', '_');
+      return n;
+    });
+
+TEST(MeshIO, RepairMergesDuplicatesAndDropsDegenerateFaces) {
+  const auto path = write_file("repairable.off", off("0 0 0\n1 0 0\n0 1 0\n1 0 0\n1 1 0\n2 0 0\n",
+                                                     "3 0 1 2\n3 3 4 2\n3 0 1 5\n", 6, 3));
+  EXPECT_THROW(load_mesh(path), InputError);
+  LoadReport report;
+  LoadSettings settings;
+  settings.repair = true;
+  const TriMesh mesh = load_mesh(path, settings, &report);
+  EXPECT_EQ(report.duplicate_vertices, 1u);
+  EXPECT_EQ(report.degenerate_faces, 1u);
+  EXPECT_EQ(mesh.n_faces(), 2u);
+  EXPECT_EQ(mesh.n_vertices(), 4u);
+  const RunResult result = run_cli("stats --repair " + path.string());
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+}
+
+TEST(Cli, BadOptionIsAnErrorWithAHint) {
+  const RunResult result = run_cli("stats --no-such-option x.off");
+  EXPECT_EQ(result.exit_code, kExitBadInput);
+  EXPECT_NE(result.output.find("--help"), std::string::npos) << result.output;
+  const RunResult bad_interval = run_cli("stats --emin 2 --emax 1 x.off");
+  EXPECT_EQ(bad_interval.exit_code, kExitBadInput);
+}

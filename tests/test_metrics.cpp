@@ -1,0 +1,102 @@
+// Metrics: topology, valence statistics and the Hausdorff distance on meshes with known answers.
+#include <gtest/gtest.h>
+
+#include "carbonmesh/remesh/hausdorff.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+
+using namespace carbonmesh;
+
+TEST(Topology, SphereHasGenus0) {
+  const Topology t = topology(make_icosphere({5.0, 3}));
+  EXPECT_EQ(t.genus, 0);
+  EXPECT_EQ(t.euler, 2);
+  EXPECT_EQ(t.components, 1u);
+  EXPECT_EQ(t.boundary_loops, 0u);
+}
+
+TEST(Topology, TorusHasGenus1) {
+  const Topology t = topology(make_torus({10.0, 3.0, 1.5}));
+  EXPECT_EQ(t.genus, 1);
+  EXPECT_EQ(t.euler, 0);
+  EXPECT_EQ(t.components, 1u);
+}
+
+TEST(Topology, HelixAndCapsuleAreClosedGenus0) {
+  for (const TriMesh& mesh : {make_helix({}), make_capsule({})}) {
+    const Topology t = topology(mesh);
+    EXPECT_EQ(t.genus, 0);
+    EXPECT_EQ(t.boundary_loops, 0u);
+    EXPECT_EQ(t.components, 1u);
+  }
+}
+
+TEST(Topology, BordersAndComponentsAreCounted) {
+  // Two separate triangles: two components, two border loops, genus 0 each.
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> v;
+  for (int i = 0; i < 6; ++i) v.push_back(mesh.add_vertex(Vec3(i, i % 2, 0)));
+  mesh.add_face(v[0], v[1], v[2]);
+  mesh.add_face(v[3], v[4], v[5]);
+  const Topology t = topology(mesh);
+  EXPECT_EQ(t.components, 2u);
+  EXPECT_EQ(t.boundary_loops, 2u);
+  EXPECT_EQ(t.genus, 0);
+}
+
+TEST(Valence, IcosahedronHasNoRegularVertexAndEvalOneEverywhere) {
+  const ValenceStats v = valence_stats(make_icosphere({1.0, 0}));
+  EXPECT_DOUBLE_EQ(v.percent_regular, 0.0);
+  EXPECT_DOUBLE_EQ(v.percent_eval1, 100.0);
+  EXPECT_DOUBLE_EQ(v.percent_eval_gt1, 0.0);
+  EXPECT_EQ(v.interior.at(5), 12u);
+}
+
+TEST(Valence, SubdividedIcosphereIsRegularBut12) {
+  const TriMesh mesh = make_icosphere({1.0, 2});
+  const ValenceStats v = valence_stats(mesh);
+  EXPECT_EQ(v.interior.at(5), 12u);
+  EXPECT_EQ(v.interior.at(6), mesh.n_vertices() - 12);
+}
+
+TEST(EdgeStats, LongAndShortAreStrict) {
+  const TriMesh mesh = make_icosphere({1.0, 0});
+  const double l = edge_stats(mesh).min;
+  const EdgeStats inside = edge_stats(mesh, {l, l * (1 + 1e-12)});
+  EXPECT_EQ(inside.short_edges, 0u);
+  const EdgeStats above = edge_stats(mesh, {l * 1.5, l * 2});
+  EXPECT_EQ(above.short_edges, 30u);
+  EXPECT_DOUBLE_EQ(above.percent_inside, 0.0);
+  EXPECT_NEAR(edge_stats(mesh).std, 0.0, 1e-12);
+}
+
+TEST(Hausdorff, MeshToItselfIsZero) {
+  const TriMesh mesh = make_icosphere({10.0, 3});
+  const HausdorffResult h = hausdorff_distance(mesh, mesh, {20000, 1});
+  EXPECT_LT(h.max, 1e-9);
+  EXPECT_LT(h.rms, 1e-9);
+}
+
+TEST(Hausdorff, ShiftedCopyIsAtTheShift) {
+  // A plane-like patch: a big flat square shifted along its normal by d is at distance d everywhere.
+  TriMesh a, b;
+  const double d = 0.3;
+  for (TriMesh* m : {&a, &b}) {
+    const double z = m == &a ? 0.0 : d;
+    auto v0 = m->add_vertex(Vec3(0, 0, z)), v1 = m->add_vertex(Vec3(10, 0, z));
+    auto v2 = m->add_vertex(Vec3(10, 10, z)), v3 = m->add_vertex(Vec3(0, 10, z));
+    m->add_face(v0, v1, v2);
+    m->add_face(v0, v2, v3);
+  }
+  const HausdorffResult h = hausdorff_distance(a, b, {20000, 1});
+  EXPECT_NEAR(h.max, d, 1e-9);
+  EXPECT_NEAR(h.rms, d, 1e-9);
+  // A sphere shifted by d along x: the one-sided maximum is d (at the poles of the shift axis).
+  const TriMesh s = make_icosphere({10.0, 4});
+  TriMesh shifted = s;
+  for (auto v : shifted.vertices()) shifted.set_point(v, shifted.point(v) + Vec3(d, 0, 0));
+  const HausdorffResult hs = hausdorff_distance(s, shifted, {200000, 7});
+  EXPECT_NEAR(hs.max, d, 0.02);
+  EXPECT_GT(hs.rms, 0.3 * d);
+  EXPECT_LT(hs.rms, d);
+}
