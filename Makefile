@@ -14,8 +14,13 @@ build: bootstrap
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD) -j $(JOBS)
 
+CLI = $(BUILD)/tools/carbonmesh/carbonmesh
+
+# The main job on the built-in default shape.
 run: build
-	$(BUILD)/tools/carbonmesh/carbonmesh run -o $(OUT)
+	mkdir -p $(OUT)
+	$(CLI) shape sphere --radius 10 --subdivisions 3 -o $(OUT)/sphere.off
+	$(CLI) stats $(OUT)/sphere.off
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
