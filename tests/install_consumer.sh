@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Installs the build tree into a temporary prefix and builds and runs tests/consumer against it.
+set -euo pipefail
+build_dir=$1
+source_dir=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log"
+test -x "$work/prefix/bin/carbonmesh"
+cmake -S "$source_dir/consumer" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
+cmake --build "$work/build" -j 2 > "$work/build.log"
+"$work/build/consumer"
+"$work/prefix/bin/carbonmesh" --version
