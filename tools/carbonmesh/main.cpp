@@ -7,10 +7,12 @@
 #include <exception>
 #include <iostream>
 
+#include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
+  carbonmesh::remove_partial_files_on_interrupt();
   auto logger = spdlog::stderr_color_mt("carbonmesh");
   spdlog::set_default_logger(logger);
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");

@@ -13,4 +13,8 @@ std::filesystem::path partial_path(const std::filesystem::path& target);
 void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& tmp)>& write);
 
+// Installs SIGINT/SIGTERM handlers that remove the temporary files being written and then end the process
+// with the signal (non-zero exit). The CLI calls it once at start.
+void remove_partial_files_on_interrupt();
+
 }  // namespace carbonmesh
