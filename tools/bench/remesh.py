@@ -1,0 +1,118 @@
+#!/usr/bin/python3
+"""Remeshing benchmark: the dissertation's protocol on every model of ../shared/models/seed-protocol
+([1.2, 1.8]; n=150, kl=2, kn=2, p=0, l=0.5, mean value) and CGAL's isotropic_remeshing (target 1.5,
+10 iterations, borders protected) on the same inputs in the same run; a kl x weights study on bunny;
+convergence curves as PNG. Writes its section of docs/benchmarks.md.
+
+Usage: tools/bench/remesh.py [--build build] [--models DIR] [--only NAME ...] [--no-study]
+"""
+import argparse
+import json
+import csv
+import math
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_common import machine_line, replace_section, run_json, timed  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+PROTOCOL = ["--emin", "1.2", "--emax", "1.8", "--iterations", "150", "--kl", "2", "--kn", "2", "--p", "0",
+            "--l", "0.5", "--weights", "mean-value"]
+
+
+def stats(cli, mesh, reference):
+    return run_json([cli, "stats", mesh, "--emin", "1.2", "--emax", "1.8", "--ref", reference, "--json"])
+
+
+def row(model, method, seconds, rss, s, iterations):
+    e, v, h, t = s["edges"], s["valence"], s["hausdorff"], s["topology"]
+    return (f"| {model} | {method} | {seconds:.2f} | {rss:.0f} | {t['vertices']} | {t['faces']} | {e['long']} | "
+            f"{e['short']} | {e['percent_inside']:.2f} | {e['mean']:.4f} | {e['std']:.4f} | "
+            f"{v['percent_regular']:.2f} | {v['percent_eval0']:.2f} / {v['percent_eval1']:.2f} / "
+            f"{v['percent_eval_gt1']:.2f} | {h['max']:.4f} | {h['rms']:.4f} | {iterations} |")
+
+
+def plot_convergence(csv_path, png_path, title):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    xs, ys = [], []
+    with open(csv_path) as f:
+        for r in csv.DictReader(f):
+            xs.append(int(r["iteration"]))
+            ys.append(math.log10(max(1, int(r["long"]) + int(r["short"]))))
+    fig, ax = plt.subplots(figsize=(5, 3.2), dpi=120)
+    ax.plot(xs, ys, marker=".", lw=1)
+    ax.set_xlabel("iteration")
+    ax.set_ylabel("log10(long + short)  (0 also for 1)")
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(png_path)
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--models", default=os.path.join(ROOT, "..", "shared", "models", "seed-protocol"))
+    ap.add_argument("--only", nargs="*")
+    ap.add_argument("--no-study", action="store_true")
+    args = ap.parse_args()
+    if not os.path.isdir(args.models):
+        print(f"remesh benchmark skipped: {args.models} is missing (the shared models are needed)")
+        return 0
+    cli = os.path.join(args.build, "tools", "carbonmesh", "carbonmesh")
+    peer = os.path.join(args.build, "tools", "bench", "cgal_remesh")
+    img_dir = os.path.join(ROOT, "docs", "img")
+    os.makedirs(img_dir, exist_ok=True)
+    models = sorted(f[:-4] for f in os.listdir(args.models) if f.endswith(".off"))
+    if args.only:
+        models = [m for m in models if m in args.only]
+    work = tempfile.mkdtemp(prefix="carbonmesh-bench-")
+    lines = ["## Remeshing: the dissertation's protocol vs CGAL isotropic_remeshing", "",
+             f"Machine: {machine_line()}. Inputs: ../shared/models/seed-protocol (mean edge 2.25). carbonmesh: "
+             "`carbonmesh remesh IN OUT --emin 1.2 --emax 1.8 --iterations 150 --kl 2 --kn 2 --p 0 --l 0.5 "
+             "--weights mean-value`. CGAL: isotropic_remeshing, target 1.5, 10 iterations, borders protected. "
+             "Seconds: the method's own time (carbonmesh's remesh() / CGAL's calls, without file IO); peak RSS: "
+             "the whole process. Hausdorff: symmetric, to the input, 200k samples a side. Written by "
+             "tools/bench/remesh.py.", "",
+             "| model | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "
+             "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for model in models:
+        src = os.path.join(args.models, model + ".off")
+        ours, conv = os.path.join(work, model + ".off"), os.path.join(work, model + ".csv")
+        out, _, rss = timed([cli, "-q", "remesh", src, ours, "--log", conv, "--json"] + PROTOCOL)
+        result = json.loads(out)
+        lines.append(row(model, "carbonmesh", result["seconds"], rss, stats(cli, ours, src), result["iterations"]))
+        plot_convergence(conv, os.path.join(img_dir, f"convergence-{model}.png"), f"{model}: long + short")
+        theirs = os.path.join(work, model + "-cgal.off")
+        out, _, rss = timed([peer, src, theirs, "--target", "1.5", "--iterations", "10"])
+        lines.append(row(model, "CGAL", json.loads(out)["seconds"], rss, stats(cli, theirs, src), 10))
+        print(lines[-2] + "\n" + lines[-1], flush=True)
+    lines += ["", "Convergence curves: " + ", ".join(f"[{m}](img/convergence-{m}.png)" for m in models), ""]
+    if not args.no_study and "bunny" in models:
+        lines += ["### Parameter study on bunny (Table 5.1 of the dissertation: kl x weights)", "",
+                  "| kl | weights | iterations | seconds | long | short | % regular |", "|---|---|---|---|---|---|---|"]
+        src = os.path.join(args.models, "bunny.off")
+        for kl in ("2", "3", "4"):
+            for w in ("mean-value", "shape-preserving"):
+                params = list(PROTOCOL)
+                params[params.index("--kl") + 1] = kl
+                params[params.index("--weights") + 1] = w
+                out_mesh = os.path.join(work, f"bunny-{kl}-{w}.off")
+                out, _, _ = timed([cli, "-q", "remesh", src, out_mesh, "--json"] + params)
+                        r = json.loads(out)
+                lines.append(f"| {kl} | {w} | {r['iterations']} | {r['seconds']:.2f} | {r['long']} | {r['short']} | "
+                             f"{r['percent_regular']:.2f} |")
+                print(lines[-1], flush=True)
+    replace_section(os.path.join(ROOT, "docs", "benchmarks.md"), "remesh", "\n".join(lines))
+    print("wrote docs/benchmarks.md")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
