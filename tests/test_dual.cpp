@@ -1,0 +1,180 @@
+// The dual of triangle meshes (atoms, bonds, rings, maps) and the dual optimisation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "carbonmesh/dual/dual_mesh.hpp"
+#include "carbonmesh/dual/graph_stats.hpp"
+#include "carbonmesh/dual/optimize.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+
+using namespace carbonmesh;
+
+namespace {
+
+double surface_area(const TriMesh& mesh) {
+  double area = 0;
+  for (auto f : mesh.faces()) {
+    auto it = mesh.cfv_iter(f);
+    const Vec3 a = mesh.point(*it++), b = mesh.point(*it++), c = mesh.point(*it);
+    area += 0.5 * OpenMesh::cross(b - a, c - a).norm();
+  }
+  return area;
+}
+
+// An icosphere scaled so that its area is faces * (3 sqrt(3) / 4) b^2: the area a graphene-like net of
+// bond b needs for one atom per face.
+TriMesh fullerene_surface(int subdivisions, double b) {
+  TriMesh mesh = make_icosphere({1.0, subdivisions});
+  const double wanted = static_cast<double>(mesh.n_faces()) * 3.0 * std::sqrt(3.0) / 4.0 * b * b;
+  const double s = std::sqrt(wanted / surface_area(mesh));
+  for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * s);
+  mesh.update_normals();
+  return mesh;
+}
+
+// Six triangles around one vertex: a flat hexagonal fan with a border.
+TriMesh hexagon_fan() {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> v{mesh.add_vertex(Vec3(0, 0, 0))};
+  for (int i = 0; i < 6; ++i) v.push_back(mesh.add_vertex(Vec3(std::cos(i * M_PI / 3), std::sin(i * M_PI / 3), 0)));
+  for (int i = 0; i < 6; ++i) mesh.add_face(v[0], v[1 + i], v[1 + (i + 1) % 6]);
+  return mesh;
+}
+
+}  // namespace
+
+TEST(Dual, IcosphereGivesFullereneWith12Pentagons) {
+  for (int s = 0; s <= 3; ++s) {
+    const TriMesh sphere = make_icosphere({5.0, s});
+    const Dual dual = build_dual(sphere);
+    EXPECT_EQ(dual.atoms(), sphere.n_faces());
+    EXPECT_EQ(dual.bonds.size(), sphere.n_edges());
+    EXPECT_EQ(dual.rings.size(), sphere.n_vertices());
+    EXPECT_EQ(dual.mesh.n_faces(), sphere.n_vertices());
+    EXPECT_EQ(dual.counts.ring_sizes.at(5), 12u) << "subdivisions " << s;
+    const std::size_t hexagons = sphere.n_vertices() - 12;
+    if (hexagons > 0) {
+      EXPECT_EQ(dual.counts.ring_sizes.at(6), hexagons);
+    }
+    EXPECT_EQ(dual.counts.ring_sizes.size(), hexagons > 0 ? 2u : 1u);
+    EXPECT_EQ(dual.counts.coordination.size(), 1u);
+    EXPECT_EQ(dual.counts.coordination.at(3), dual.atoms());
+    EXPECT_DOUBLE_EQ(dual.counts.percent_three_bonds, 100.0);
+    EXPECT_EQ(dual.counts.open_rings, 0u);
+    EXPECT_EQ(dual.counts.border_atoms, 0u);
+  }
+}
+
+TEST(Dual, MapsAreInverseAndAtomsSitAtCentroids) {
+  const TriMesh sphere = make_icosphere({3.0, 2});
+  const Dual dual = build_dual(sphere);
+  for (std::size_t a = 0; a < dual.atoms(); ++a) {
+    const int f = dual.atom_face[a];
+    EXPECT_EQ(dual.face_atom[static_cast<std::size_t>(f)], static_cast<int>(a));
+    Vec3 c(0, 0, 0);
+    for (auto v : sphere.fv_range(sphere.face_handle(static_cast<unsigned>(f)))) c += sphere.point(v);
+    EXPECT_LT((dual.mesh.point(dual.mesh.vertex_handle(static_cast<unsigned>(a))) - c / 3.0).norm(), 1e-12);
+  }
+  for (std::size_t r = 0; r < dual.rings.size(); ++r) {
+    const int v = dual.ring_vertex[r];
+    EXPECT_EQ(dual.vertex_ring[static_cast<std::size_t>(v)], static_cast<int>(r));
+    EXPECT_EQ(dual.rings[r].size(), sphere.valence(sphere.vertex_handle(static_cast<unsigned>(v))));
+    // Every atom of the ring is a triangle around the vertex.
+    for (int a : dual.rings[r]) {
+      bool found = false;
+      for (auto u : sphere.fv_range(sphere.face_handle(static_cast<unsigned>(dual.atom_face[static_cast<std::size_t>(a)]))))
+        found = found || u.idx() == v;
+      EXPECT_TRUE(found);
+    }
+  }
+  // Each bond joins the two triangles of its primal edge.
+  for (std::size_t i = 0; i < dual.bonds.size(); ++i) {
+    const auto e = sphere.edge_handle(static_cast<unsigned>(dual.bond_edge[i]));
+    const int f0 = sphere.face_handle(sphere.halfedge_handle(e, 0)).idx();
+    const int f1 = sphere.face_handle(sphere.halfedge_handle(e, 1)).idx();
+    EXPECT_EQ(std::minmax(dual.face_atom[static_cast<std::size_t>(f0)], dual.face_atom[static_cast<std::size_t>(f1)]),
+              std::minmax(dual.bonds[i][0], dual.bonds[i][1]));
+  }
+}
+
+TEST(Dual, RingsAreOrientedOutward) {
+  const TriMesh sphere = make_icosphere({4.0, 2});
+  const Dual dual = build_dual(sphere);
+  for (auto f : dual.mesh.faces()) {
+    Vec3 c(0, 0, 0);
+    int n = 0;
+    for (auto v : dual.mesh.fv_range(f)) c += dual.mesh.point(v), ++n;
+    EXPECT_GT(OpenMesh::dot(dual.mesh.normal(f), c / n), 0.0);
+  }
+}
+
+TEST(Dual, OpenBorderGivesTwoCoordinatedAtomsAndOpenRings) {
+  const Dual dual = build_dual(hexagon_fan());
+  EXPECT_EQ(dual.atoms(), 6u);
+  EXPECT_EQ(dual.bonds.size(), 6u);
+  EXPECT_EQ(dual.counts.closed_rings, 1u);
+  EXPECT_EQ(dual.counts.ring_sizes.at(6), 1u);
+  EXPECT_EQ(dual.counts.open_rings, 6u);
+  EXPECT_EQ(dual.counts.coordination.at(2), 6u);
+  EXPECT_EQ(dual.counts.border_atoms, 6u);
+  EXPECT_DOUBLE_EQ(dual.counts.percent_three_bonds, 0.0);
+  // Each open ring (border vertex) holds the two triangles at that vertex, in order.
+  for (std::size_t r = 0; r < dual.rings.size(); ++r)
+    if (!dual.ring_closed[r]) {
+      EXPECT_EQ(dual.rings[r].size(), 2u);
+    }
+}
+
+TEST(GraphStats, AnglesOfAHexagonFanAre120) {
+  const Dual dual = build_dual(hexagon_fan());
+  const auto angles = bond_angles(dual.atoms(), dual.bonds);
+  ASSERT_EQ(angles.size(), 6u);
+  const SampleStats s = sample_stats(angle_degrees(dual.positions(), angles));
+  EXPECT_NEAR(s.min, 120.0, 1e-9);
+  EXPECT_NEAR(s.max, 120.0, 1e-9);
+  const SampleStats b = sample_stats(bond_lengths(dual.positions(), dual.bonds));
+  EXPECT_NEAR(b.mean, 1.0 / std::sqrt(3.0), 1e-12);  // centroid distance of unit equilateral triangles
+  EXPECT_NEAR(b.std, 0.0, 1e-12);
+}
+
+TEST(DualOptimize, SubdividedIcosahedronFullereneBondsWithinTolerance) {
+  const double b = 1.42;
+  for (int s : {1, 2, 3}) {
+    const TriMesh surface = fullerene_surface(s, b);
+    Dual dual = build_dual(surface);
+    DualOptimizeSettings settings;
+    settings.bond = b;
+    const DualOptimizeResult r = optimize_dual(dual, surface, settings);
+    EXPECT_GT(r.bonds_after.min, b - 0.05) << "C" << dual.atoms();
+    EXPECT_LT(r.bonds_after.max, b + 0.05) << "C" << dual.atoms();
+    EXPECT_LT(r.bonds_after.std, r.bonds_before.std) << "C" << dual.atoms();
+    EXPECT_LT(r.energy_after, r.energy_before);
+    EXPECT_LT(r.surface_max_after, 0.1);
+    const SampleStats check = sample_stats(bond_lengths(dual.positions(), dual.bonds));
+    EXPECT_DOUBLE_EQ(check.max, r.bonds_after.max);  // the atoms were moved
+  }
+}
+
+TEST(DualOptimize, IsDeterministic) {
+  const TriMesh surface = fullerene_surface(2, 1.42);
+  Dual a = build_dual(surface), b = build_dual(surface);
+  optimize_dual(a, surface);
+  optimize_dual(b, surface);
+  const auto pa = a.positions(), pb = b.positions();
+  for (std::size_t i = 0; i < pa.size(); ++i) EXPECT_EQ(pa[i], pb[i]);
+}
+
+TEST(DualOptimize, WithoutIterationsOnlyMeasures) {
+  const TriMesh surface = fullerene_surface(1, 1.42);
+  Dual dual = build_dual(surface);
+  const auto before = dual.positions();
+  DualOptimizeSettings settings;
+  settings.max_iterations = 0;
+  const DualOptimizeResult r = optimize_dual(dual, surface, settings);
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_EQ(dual.positions(), before);
+  EXPECT_DOUBLE_EQ(r.bonds_before.mean, r.bonds_after.mean);
+  EXPECT_NEAR(r.surface_max_before, 0.0, 1e-9);  // centroids lie on their triangles
+}
