@@ -10,5 +10,6 @@ using Action = std::function<int()>;
 // Registers a subcommand; `action` is set to its run function when it is selected.
 void add_stats_command(CLI::App& app, Action& action);
 void add_shape_command(CLI::App& app, Action& action);
+void add_analyze_command(CLI::App& app, Action& action);
 
 }  // namespace carbonmesh::cli

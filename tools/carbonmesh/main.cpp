@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   carbonmesh::cli::Action action;
   carbonmesh::cli::add_stats_command(app, action);
   carbonmesh::cli::add_shape_command(app, action);
+  carbonmesh::cli::add_analyze_command(app, action);
 
   try {
     app.parse(argc, argv);
