@@ -13,7 +13,7 @@
 #include "carbonmesh/remesh/shapes.hpp"
 #include "carbonmesh/simulations/analysis.hpp"
 #include "carbonmesh/simulations/defect_stats.hpp"
-#include "carbonmesh/simulations/lammps_data.hpp"
+#include "carbonmesh/simulations/lammps_atoms.hpp"
 #include "carbonmesh/simulations/mirror_plane.hpp"
 #include "carbonmesh/simulations/ring_structure.hpp"
 #include "carbonmesh/simulations/sp_rings.hpp"
@@ -379,7 +379,7 @@ TEST(MirrorPlane, ParsesAndCountsSides) {
 
 // ---------------------------------------------------------------------------------------- data files
 
-TEST(LammpsData, ReadsAtomicAndFullAndFindsTheRingsOfAnIcosphereDual) {
+TEST(LammpsAtoms, ReadsAtomicAndFullAndFindsTheRingsOfAnIcosphereDual) {
   const RingStructure mesh_rings = rings_from_mesh(make_icosphere({1.0, 2}));
   // Scale so that the mean bond is 1.42 A.
   double mean = 0;
@@ -392,7 +392,7 @@ TEST(LammpsData, ReadsAtomicAndFullAndFindsTheRingsOfAnIcosphereDual) {
   for (bool full : {false, true}) {
     const fs::path file = dir / (full ? "full.data" : "atomic.data");
     write_data(file, atoms, full);
-    const LammpsData data = read_lammps_data(file);
+    const LammpsAtoms data = read_lammps_atoms(file);
     EXPECT_EQ(data.atom_style, full ? "full" : "atomic");
     ASSERT_EQ(data.positions.size(), atoms.size());
     EXPECT_NEAR(data.positions[5][1], atoms[5][1], 1e-5);
@@ -414,13 +414,13 @@ TEST(LammpsData, ReadsAtomicAndFullAndFindsTheRingsOfAnIcosphereDual) {
   fs::remove_all(dir);
 }
 
-TEST(LammpsData, BadFilesGiveFileLineErrors) {
+TEST(LammpsAtoms, BadFilesGiveFileLineErrors) {
   const fs::path dir = temp_dir("bad");
   auto expect_error = [&](const std::string& text, const std::string& needle) {
     const fs::path f = dir / "bad.data";
     std::ofstream(f) << text;
     try {
-      read_lammps_data(f);
+      read_lammps_atoms(f);
       ADD_FAILURE() << "no error for: " << text;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
@@ -442,14 +442,14 @@ TEST(LammpsData, BadFilesGiveFileLineErrors) {
   expect_error(header, "no Atoms section");
   expect_error(std::string("ti\0tle", 6), "binary");
   std::ofstream(dir / "empty.data");
-  EXPECT_THROW(read_lammps_data(dir / "empty.data"), InputError);
-  EXPECT_THROW(read_lammps_data(dir / "missing.data"), InputError);
+  EXPECT_THROW(read_lammps_atoms(dir / "empty.data"), InputError);
+  EXPECT_THROW(read_lammps_atoms(dir / "missing.data"), InputError);
   // Truncations of a good file at every byte never crash: either a clean read or an InputError.
   const std::string good = header + "Masses\n\n1 12.011\n\nAtoms # atomic\n\n1 1 0 0 0\n2 1 0 1.4 0 0 0 1\n";
   for (std::size_t cut = 0; cut <= good.size(); ++cut) {
     std::ofstream(dir / "cut.data") << good.substr(0, cut);
     try {
-      read_lammps_data(dir / "cut.data");
+      read_lammps_atoms(dir / "cut.data");
     } catch (const InputError&) {
     }
   }

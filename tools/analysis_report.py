@@ -20,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 THREE_DIRS = ["/usr/share/javascript/three"]
 THREE_FILES = ["three.min.js", "examples/js/controls/OrbitControls.js"]
 
-# Same colours as ring_colour() in simulations/src/report_files.cpp.
+# Same colours as defect_ring_colour() in simulations/src/report_files.cpp.
 COLOURS = {3: "#ffd700", 4: "#ff7f0e", 5: "#d62728", 6: "#c8c8c8", 7: "#1f77b4", 8: "#2ca02c"}
 OTHER = "#9467bd"
 
@@ -67,6 +67,7 @@ def plot_ring_sizes(report, path):
                         fontsize=9)
         if max(by.values()) > 50 * max(1, min(by.values())):
             ax.set_yscale("log")
+            ax.set_ylim(0.7, 2.5 * max(by.values()))
     ax.set_xlabel("ring size (atoms)")
     ax.set_ylabel("rings")
     open_total = report["rings"]["open"]
@@ -203,8 +204,37 @@ VIEW_JS = r"""
     lg.setAttribute('color', new THREE.BufferAttribute(new Float32Array(lc), 3));
     group.add(new THREE.LineSegments(lg, new THREE.LineBasicMaterial({vertexColors: THREE.VertexColors})));
   }
+  // Hexagons: an opaque near-white surface so that the far side is hidden.
+  const sp = [];
+  for (const ring of (data.rings || [])) {
+    const m = ring.length;
+    const cc = [0, 0, 0];
+    for (const v of ring) for (let k = 0; k < 3; ++k) cc[k] += a[3*v+k] / m;
+    for (let j = 0; j < m; ++j) {
+      const u = ring[j], w = ring[(j + 1) % m];
+      sp.push(cc[0], cc[1], cc[2], a[3*u], a[3*u+1], a[3*u+2], a[3*w], a[3*w+1], a[3*w+2]);
+    }
+  }
+  if (sp.length) {
+    const sg = new THREE.BufferGeometry();
+    sg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(sp), 3));
+    group.add(new THREE.Mesh(sg, new THREE.MeshBasicMaterial({color: 0xf2f2f2, side: THREE.DoubleSide,
+      polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1})));
+  }
+  // The mirror plane, if any: a translucent square through the shape.
+  if (data.plane) {
+    const nrm = new THREE.Vector3().fromArray(data.plane.normal).normalize();
+    const ctr = new THREE.Vector3(c[0], c[1], c[2]);
+    const foot = ctr.clone().addScaledVector(nrm, data.plane.offset - nrm.dot(ctr));
+    const pg = new THREE.PlaneGeometry(2.4 * radius, 2.4 * radius);
+    const pm = new THREE.Mesh(pg, new THREE.MeshBasicMaterial({color: 0x2ca02c, transparent: true, opacity: 0.18,
+      side: THREE.DoubleSide, depthWrite: false}));
+    pm.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), nrm);
+    pm.position.copy(foot);
+    group.add(pm);
+  }
   const camera = new THREE.PerspectiveCamera(40, box.clientWidth / box.clientHeight, radius * 0.01, radius * 100);
-  camera.position.set(0.9 * radius, 0.6 * radius, 2.6 * radius);
+  camera.position.set(0.8 * radius, 0.5 * radius, 2.3 * radius);
   camera.lookAt(0, 0, 0);
   let controls = null;
   if (THREE.OrbitControls) {
@@ -301,7 +331,7 @@ figcaption { font-size: 12px; color: #555; }
 <h2>3D view</h2>
 <div class="legend">rings:<span style="background:#d62728"></span>pentagon<span style="background:#1f77b4"></span>heptagon
 <span style="background:#ff7f0e"></span>square<span style="background:#2ca02c"></span>octagon<span style="background:#9467bd"></span>other;
-bonds grey &nbsp; <label><input type="checkbox" id="show-bonds" checked> bonds</label>
+hexagons light grey; mirror plane translucent green &nbsp; <label><input type="checkbox" id="show-bonds" checked> bonds</label>
 <label><input type="checkbox" id="show-atoms" checked> atoms</label></div>
 <div id="view"></div><p id="view-note"></p>
 <h2>Plots</h2>

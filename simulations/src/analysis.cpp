@@ -9,7 +9,7 @@
 
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/io.hpp"
-#include "carbonmesh/simulations/lammps_data.hpp"
+#include "carbonmesh/simulations/lammps_atoms.hpp"
 
 namespace carbonmesh {
 namespace fs = std::filesystem;
@@ -112,7 +112,7 @@ RingStructure load_ring_structure(const ResolvedInput& in, const AnalysisSetting
   if (in.kind == "lammps data") {
     if (!(settings.cutoff > 0 && settings.cutoff < 1e6)) throw InputError(fmt::format("--cutoff {} must be positive", settings.cutoff));
     Timer t;
-    LammpsData data = read_lammps_data(in.file);
+    LammpsAtoms data = read_lammps_atoms(in.file);
     spdlog::info("{}: {} atoms (style {})", in.file.string(), data.positions.size(), data.atom_style);
     std::vector<Bond> bonds;
     if (settings.data_bonds) {

@@ -30,7 +30,7 @@ void write_text(const fs::path& target, const std::function<void(std::ofstream&)
 
 }  // namespace
 
-std::array<unsigned char, 3> ring_colour(int size) {
+std::array<unsigned char, 3> defect_ring_colour(int size) {
   switch (size) {
     case 3: return {255, 215, 0};    // gold
     case 4: return {255, 127, 14};   // orange
@@ -120,7 +120,7 @@ std::vector<std::string> write_report_files(const fs::path& dir, const Analysis&
       if (rs.open[r]) continue;
       out << rs.rings[r].size();
       for (int v : rs.rings[r]) out << ' ' << v;
-      const auto c = ring_colour(rs.sizes[r]);
+      const auto c = defect_ring_colour(rs.sizes[r]);
       out << ' ' << int(c[0]) << ' ' << int(c[1]) << ' ' << int(c[2]) << ' ' << rs.sizes[r] << '\n';
     }
   });
@@ -165,6 +165,16 @@ std::vector<std::string> write_report_files(const fs::path& dir, const Analysis&
       out << "]}";
       first = false;
     }
+    out << "],\"rings\":[";  // the other closed rings, drawn as an opaque light surface
+    first = true;
+    if (full)
+      for (std::size_t r = 0; r < rs.size(); ++r) {
+        if (rs.open[r] || rs.sizes[r] != 6) continue;
+        out << (first ? "[" : ",[");
+        for (std::size_t k = 0; k < rs.rings[r].size(); ++k) out << (k ? "," : "") << rs.rings[r][k];
+        out << "]";
+        first = false;
+      }
     out << "]";
     if (a.plane)
       out << fmt::format(",\"plane\":{{\"normal\":[{},{},{}],\"offset\":{}}}", a.plane->plane.normal[0],

@@ -12,7 +12,7 @@
 namespace carbonmesh {
 
 // Colour of a ring of `size` (hexagons light grey, pentagons red, heptagons blue, ...); shared with the plots.
-std::array<unsigned char, 3> ring_colour(int size);
+std::array<unsigned char, 3> defect_ring_colour(int size);
 
 struct ReportFilesSettings {
   std::size_t max_view_atoms = 300000;  // above this, view.json holds only the defect rings' atoms

@@ -11,7 +11,7 @@
 
 namespace carbonmesh {
 
-struct LammpsData {
+struct LammpsAtoms {
   std::string title;       // first line
   std::string atom_style;  // as given after "Atoms #", or inferred from the column count
   std::array<double, 3> box_lo{0, 0, 0}, box_hi{0, 0, 0};
@@ -26,6 +26,6 @@ struct LammpsData {
 
 // Throws InputError "file:line: problem" for anything malformed (missing header counts or box, truncated
 // sections, non-numeric or non-finite values, duplicate or unknown atom ids, types out of range).
-LammpsData read_lammps_data(const std::filesystem::path& file);
+LammpsAtoms read_lammps_atoms(const std::filesystem::path& file);
 
 }  // namespace carbonmesh

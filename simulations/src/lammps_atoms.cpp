@@ -1,4 +1,4 @@
-#include "carbonmesh/simulations/lammps_data.hpp"
+#include "carbonmesh/simulations/lammps_atoms.hpp"
 
 #include <fmt/format.h>
 
@@ -129,9 +129,9 @@ std::optional<Style> style_named(std::string_view name) {
 
 }  // namespace
 
-LammpsData read_lammps_data(const std::filesystem::path& file) {
+LammpsAtoms read_lammps_atoms(const std::filesystem::path& file) {
   Reader r(file);
-  LammpsData data;
+  LammpsAtoms data;
   std::string_view line;
   if (!r.next(line)) r.fail_eof("no title line");
   data.title = std::string(line.substr(0, std::min<std::size_t>(line.size(), 200)));
