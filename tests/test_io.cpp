@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <array>
 
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/io.hpp"
@@ -68,8 +69,8 @@ TEST(MeshIO, RoundTripEveryFormatKeepsTheMesh) {
     EXPECT_EQ(after.vertices, before.vertices) << ext;
     EXPECT_EQ(after.faces, before.faces) << ext;
     EXPECT_TRUE(after.same_type(before)) << ext;
-    // OFF and OBJ are read in double precision; PLY and STL through OpenMesh in single precision.
-    const double tolerance = (ext == ".stl" || ext == ".ply") ? 1e-5 : 1e-12;
+    // OFF, OBJ and PLY are written and read in double precision; STL stores floats.
+    const double tolerance = ext == ".stl" ? 1e-5 : 1e-12;
     EXPECT_NEAR(edge_stats(loaded).mean, edges_before.mean, tolerance) << ext;
   }
 }
@@ -138,7 +139,24 @@ INSTANTIATE_TEST_SUITE_P(
                  off("0 0 0\n1 0 0\n0 1 0\n1 0 0\n1 1 0\n", "3 0 1 2\n3 3 4 2\n", 5, 2), "duplicate vertices"},
         BadInput{"flipped.off", off("0 0 0\n1 0 0\n0 1 0\n1 1 0\n", "3 0 1 2\n3 1 2 3\n", 4, 2),
                  "inconsistent orientation"},
-        BadInput{"unknown.xyz", "1 2 3\n", "unsupported format"}),
+        BadInput{"unknown.xyz", "1 2 3\n", "unsupported format"},
+        BadInput{"header_only.off", "OFF\n", "truncated"},
+        BadInput{"truncated_vertices.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n", "truncated"},
+        BadInput{"truncated_faces.off", off(kTetraVertices, "3 0 2 1\n", 4, 4), "truncated"},
+        BadInput{"garbage.off", std::string("OFF\n\x01\x02\xff\xfe\0\0garbage", 20), "binary data"},
+        BadInput{"garbage.obj", std::string("v 0 0 0\nv \x01\x02\0\xff", 15), "binary data"},
+        BadInput{"words.off", "OFF\nthree four 0\n", "not an integer"},
+        BadInput{"out_of_range.off", off(kTetraVertices, "3 0 1 7\n", 4, 1), "out of range"},
+        BadInput{"out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "out of range"},
+        BadInput{"negative_counts.off", "OFF\n-4 2 0\n", "implausible counts"},
+        BadInput{"repeated_corner.off", off(kTetraVertices, "3 0 1 1\n", 4, 1), "degenerate"},
+        BadInput{"duplicate_face.off", off(kTetraVertices, kTetraFaces + "3 1 2 3\n", 4, 5), "duplicates"},
+        BadInput{"header_only.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n", "truncated PLY header"},
+        BadInput{"truncated.ply",
+                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n",
+                 "truncated"},
+        BadInput{"garbage.stl", std::string(7, '\x7f'), "cannot be parsed as stl"}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '.', '_');
@@ -167,4 +185,42 @@ TEST(Cli, BadOptionIsAnErrorWithAHint) {
   EXPECT_NE(result.output.find("--help"), std::string::npos) << result.output;
   const RunResult bad_interval = run_cli("stats --emin 2 --emax 1 x.off");
   EXPECT_EQ(bad_interval.exit_code, kExitBadInput);
+}
+
+TEST(MeshIO, ManySmallComponentsAreValid) {
+  // 45 separate tetrahedra: a valid input with 45 components.
+  std::string vertices, faces;
+  for (int c = 0; c < 45; ++c) {
+    for (const char* v : {"0 0 0", "1 0 0", "0 1 0", "0 0 1"}) {
+      std::istringstream in(v);
+      double x, y, z;
+      in >> x >> y >> z;
+      vertices += std::to_string(x + 3 * c) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+    }
+    const int b = 4 * c;
+    for (const auto& f : {std::array<int, 3>{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}})
+      faces += "3 " + std::to_string(b + f[0]) + " " + std::to_string(b + f[1]) + " " + std::to_string(b + f[2]) + "\n";
+  }
+  const auto path = write_file("many.off", off(vertices, faces, 180, 180));
+  const Topology t = topology(load_mesh(path));
+  EXPECT_EQ(t.components, 45u);
+  EXPECT_EQ(t.genus, 0);
+}
+
+TEST(MeshIO, HugeAndTinyCoordinatesKeepTheirPrecision) {
+  for (const double scale : {1e-9, 1e9}) {
+    TriMesh mesh = make_icosphere({scale, 1});
+    const auto path = temp_dir() / "scaled.off";
+    save_mesh(mesh, path);
+    const TriMesh loaded = load_mesh(path);
+    EXPECT_DOUBLE_EQ(edge_stats(loaded).mean, edge_stats(mesh).mean) << scale;
+  }
+}
+
+TEST(MeshIO, IsolatedVerticesAreDroppedWithAWarning) {
+  const auto path = write_file("isolated.off", off(kTetraVertices + "5 5 5\n", kTetraFaces, 5, 4));
+  LoadReport report;
+  const TriMesh mesh = load_mesh(path, {}, &report);
+  EXPECT_EQ(report.unreferenced_vertices, 1u);
+  EXPECT_EQ(mesh.n_vertices(), 4u);
 }

@@ -15,7 +15,7 @@
 
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
-#include "soup_importer.hpp"
+#include "binary_formats.hpp"
 #include "text_formats.hpp"
 
 namespace carbonmesh {
@@ -30,15 +30,6 @@ std::string lower_extension(const std::filesystem::path& file) {
 bool is_supported_input(const std::string& ext) {
   return ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl";
 }
-
-// OpenMesh's readers print to omerr/omlog; carbonmesh reports problems itself.
-struct QuietOpenMesh {
-  QuietOpenMesh() {
-    omerr().disable();
-    omlog().disable();
-    omout().disable();
-  }
-};
 
 struct PointHash {
   std::size_t operator()(const Vec3& p) const {
@@ -56,7 +47,6 @@ struct PointHash {
 }  // namespace
 
 PolygonSoup read_polygon_soup(const std::filesystem::path& file) {
-  static const QuietOpenMesh quiet;
   const std::string name = file.string();
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw InputError(name + ": no such file");
@@ -74,16 +64,10 @@ PolygonSoup read_polygon_soup(const std::filesystem::path& file) {
     soup = detail::read_off(file);
   } else if (ext == ".obj") {
     soup = detail::read_obj(file);
-  } else {  // PLY and STL, binary or text: OpenMesh's readers
-    detail::SoupImporter importer(soup);
-    OpenMesh::IO::Options options;
-    bool ok = false;
-    try {
-      ok = OpenMesh::IO::IOManager().read(name, importer, options);
-    } catch (const std::exception& e) {
-      throw InputError(name + ": cannot be parsed as " + ext.substr(1) + " (" + e.what() + ")");
-    }
-    if (!ok) throw InputError(name + ": cannot be parsed as " + ext.substr(1) + " (malformed or truncated)");
+  } else if (ext == ".ply") {
+    soup = detail::read_ply(file);
+  } else {
+    soup = detail::read_stl(file);
   }
   if (soup.points.empty()) throw InputError(name + ": no vertices");
   if (soup.polygons.empty()) throw InputError(name + ": no faces");
@@ -266,7 +250,9 @@ void save_mesh(const TriMesh& mesh, const std::filesystem::path& file) {
       ok = detail::write_off(mesh, tmp);
     } else if (ext == ".obj") {
       ok = detail::write_obj(mesh, tmp);
-    } else {  // PLY and STL through OpenMesh (single precision)
+    } else if (ext == ".ply") {
+      ok = detail::write_ply(mesh, tmp);
+    } else {  // STL stores single precision by definition; OpenMesh's writer
       OpenMesh::IO::Options options;
       ok = OpenMesh::IO::write_mesh(mesh, tmp.string(), options, 9);
     }

@@ -31,7 +31,7 @@ struct LoadReport {
   bool repaired = false;
 };
 
-// Reads the raw points and polygons of a file with OpenMesh's readers (format from the extension).
+// Reads the raw points and polygons of a file (format from the extension), in double precision.
 // Throws InputError naming the file and the problem.
 PolygonSoup read_polygon_soup(const std::filesystem::path& file);
 
