@@ -10,6 +10,7 @@
 
 #include "carbonmesh/carbon/lammps_data.hpp"
 #include "carbonmesh/carbon/lammps_dump.hpp"
+#include "carbonmesh/carbon/output_files.hpp"
 #include "carbonmesh/carbon/passivate.hpp"
 #include "carbonmesh/carbon/pdb.hpp"
 #include "carbonmesh/carbon/rebo_deck.hpp"
@@ -286,6 +287,27 @@ TEST(Writers, ExtendedXyzPdbAndPly) {
   EXPECT_EQ(pentagons, 12u);
   EXPECT_EQ(hexagons, 30u);
   fs::remove_all(dir);
+}
+
+TEST(Writers, StructureFilesGoTogether) {
+  const TriMesh cap = hemisphere(2, 8.2);
+  const Dual dual = build_dual(cap);
+  CarbonStructure c = carbon_structure(dual);
+  passivate(c);
+  const fs::path dir = temp_dir("bundle") / "out";
+  OutputSettings settings;
+  settings.deck.mpi_ranks = 8;
+  const OutputFiles files = write_structure_files(dir, c, dual.mesh, settings);
+  for (const fs::path& f : {files.data, files.deck, files.xyz, files.pdb, files.ply}) {
+    EXPECT_TRUE(fs::is_regular_file(f)) << f;
+    EXPECT_EQ(f.parent_path(), dir);
+  }
+  const auto deck = lines_of(files.deck);
+  EXPECT_NE(std::find(deck.begin(), deck.end(), "read_data       structure.data"), deck.end());
+  EXPECT_NE(std::find(deck.begin(), deck.end(), "pair_coeff      * * CH.rebo C H"), deck.end());
+  EXPECT_NE(std::find(deck.begin(), deck.end(), "# Parallel: mpirun -np 8 lmp -in in.rebo"), deck.end());
+  EXPECT_EQ(read_lammps_data(files.data).positions.size(), c.atoms());
+  fs::remove_all(dir.parent_path());
 }
 
 TEST(Writers, Hybrid36Serials) {

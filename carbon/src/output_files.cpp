@@ -1,0 +1,37 @@
+#include "carbonmesh/carbon/output_files.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <nlohmann/json.hpp>
+
+#include "carbonmesh/carbon/pdb.hpp"
+#include "carbonmesh/carbon/ring_ply.hpp"
+#include "carbonmesh/carbon/xyz.hpp"
+
+namespace carbonmesh {
+
+OutputFiles write_structure_files(const std::filesystem::path& dir, const CarbonStructure& structure,
+                                  const DualMesh& dual, const OutputSettings& settings) {
+  std::filesystem::create_directories(dir);
+  OutputFiles files{dir / "structure.data", dir / "in.rebo", dir / "structure.xyz", dir / "structure.pdb",
+                    dir / "rings.ply"};
+  write_lammps_data(structure, files.data, settings.data);
+  ReboDeckSettings deck = settings.deck;
+  deck.data_file = files.data.filename().string();
+  deck.hydrogen = structure.has_hydrogen();
+  deck.topology = settings.data.topology;
+  write_rebo_deck(deck, files.deck);
+  write_extended_xyz(structure, files.xyz, settings.data.vacuum);
+  write_pdb(structure, files.pdb);
+  write_ring_ply(dual, files.ply);
+  spdlog::info("wrote {}, {}, {}, {}, {}", files.data.string(), files.deck.string(), files.xyz.string(),
+               files.pdb.string(), files.ply.string());
+  return files;
+}
+
+nlohmann::json to_json(const OutputFiles& f) {
+  return {{"lammps_data", f.data.string()}, {"rebo_deck", f.deck.string()}, {"xyz", f.xyz.string()},
+          {"pdb", f.pdb.string()},          {"rings_ply", f.ply.string()}};
+}
+
+}  // namespace carbonmesh
