@@ -332,6 +332,11 @@ TEST(ReboDeck, NamesTheTypesAndTheMpiCommand) {
   EXPECT_NE(with_h.find("pair_coeff      * * CH.rebo C H\n"), std::string::npos);
   EXPECT_NE(with_h.find("atom_style      full"), std::string::npos);
   EXPECT_NE(with_h.find("special_bonds   lj/coul 1.0 1.0 1.0"), std::string::npos);
+  EXPECT_NE(with_h.find("dump            traj all custom 1000 "), std::string::npos);
+  s.steps = 1500;  // the dump interval divides the run, so the last step is in the dump
+  EXPECT_NE(rebo_deck(s).find("dump            traj all custom 750 "), std::string::npos);
+  s.steps = 100;
+  EXPECT_NE(rebo_deck(s).find("dump            traj all custom 100 "), std::string::npos);
 }
 
 TEST(LammpsDump, LastFrameSortedById) {

@@ -12,6 +12,9 @@ namespace carbonmesh {
 std::string rebo_deck(const ReboDeckSettings& s) {
   if (!(s.temperature > 0) || !(s.timestep > 0) || s.steps < 0 || s.thermo_every <= 0 || s.dump_every <= 0)
     throw std::invalid_argument("rebo_deck: temperature, timestep, thermo and dump intervals must be positive");
+  long dump_every = s.dump_every;
+  if (s.steps > 0)
+    while (s.steps % dump_every != 0) --dump_every;
   std::string d;
   auto line = [&d](const std::string& text) { d += text + "\n"; };
   line("# REBO2 (Brenner 2002) molecular dynamics of a carbonmesh structure.");
@@ -39,7 +42,7 @@ std::string rebo_deck(const ReboDeckSettings& s) {
   line("");
   line("thermo          " + std::to_string(s.thermo_every));
   line("thermo_style    custom step temp pe ke etotal press");
-  line(fmt::format("dump            traj all custom {} {} id type x y z", s.dump_every, s.dump_file));
+  line(fmt::format("dump            traj all custom {} {} id type x y z", dump_every, s.dump_file));
   line("dump_modify     traj sort id");
   line("");
   line("# Relax the geometry at 0 K.");

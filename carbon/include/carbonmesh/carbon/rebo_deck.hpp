@@ -17,7 +17,7 @@ struct ReboDeckSettings {
   double timestep = 0.001;     // ps
   long steps = 10000;          // 10 ps
   long thermo_every = 100;
-  long dump_every = 1000;
+  long dump_every = 1000;  // lowered to the largest divisor of steps not above it: the last step is dumped
   long minimize_iterations = 10000;
   long seed = 4928459;
   int mpi_ranks = 4;  // in the comment line only
