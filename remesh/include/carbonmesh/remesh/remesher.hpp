@@ -43,6 +43,7 @@ struct RemeshResult {
   bool post_processed = false;
   std::size_t long_edges = 0, short_edges = 0;
   double percent_regular = 0;
+  double percent_eval_gt1 = 0;  // vertices with (ideal - valence)^2 > 1
   double seconds = 0;
   Topology before, after;  // the surface type (genus, components, borders) is kept: before.same_type(after)
   std::vector<IterationLog> log;

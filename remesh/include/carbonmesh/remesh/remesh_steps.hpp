@@ -1,0 +1,126 @@
+#pragma once
+// The steps of the interval-constraining remesher (dissertation chapter 4), one free function per step.
+// remesh() in remesher.hpp chains them (Algorithm 1); they are public so that tests can check each one.
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "carbonmesh/remesh/mesh.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/remesher.hpp"
+
+namespace carbonmesh {
+
+// ---- stellar_operations.cpp (section 4.1) -------------------------------------------------------------
+
+// The intermediate interval [e^i_min, e^i_max] of section 4.1 from the current mean edge length m_i.
+struct IntermediateInterval {
+  double emin = 0, emax = 0;
+};
+IntermediateInterval intermediate_interval(double current_mean, double emin, double emax);
+
+// Collapsing `h` (from-vertex removed, to-vertex kept) keeps the topology: OpenMesh's is_collapse_ok
+// (link condition), no interior edge with both ends on a border, no border closed (loops of 3 edges),
+// and a border vertex is never removed in favour of an interior one.
+bool collapse_keeps_topology(TriMesh& mesh, TriMesh::HalfedgeHandle h);  // non-const: is_collapse_ok tags
+
+// collapse_keeps_topology plus geometry with the kept vertex moved to `position`: no face flipped or
+// degenerate, and no edge of the new star longer than `max_edge`.
+bool collapse_ok(TriMesh& mesh, TriMesh::HalfedgeHandle h, const Vec3& position, double max_edge);
+
+// Position minimising sum_j (|x - V_j| - m)^2 (Eq 4.1) over `neighbors`, restricted to the plane through
+// `start` with normal `normal` (Gauss-Newton from `start`).
+Vec3 minimize_length_energy(const std::vector<Vec3>& neighbors, const Vec3& start, const Vec3& normal, double m);
+
+struct StellarResult {
+  std::size_t splits = 0, collapses = 0;
+};
+// Splits edges longer than `emax` and collapses edges shorter than `emin` in priority order (farthest
+// outside first, ties by edge index); positions by Eq 4.1 with target length `m`. Leaves deleted
+// elements in place (call garbage_collection()).
+StellarResult stellar_operations(TriMesh& mesh, double emin, double emax, double m);
+
+// ---- correct_valence.cpp (section 4.2, Algorithm 2) ---------------------------------------------------
+
+// J_mp of flipping `e` (Eq 4.3): E_val before minus after, over the four vertices involved.
+int valence_improvement(const TriMesh& mesh, TriMesh::EdgeHandle e);
+// Flips edges with J_mp > 0 in priority order until no flip is done. Returns the number of flips.
+// With `keep`, a flip that replaces an edge inside that interval by one outside is refused.
+std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep = nullptr);
+
+// ---- local_parametrization.cpp (sections 3.6, 4.3.1) --------------------------------------------------
+
+// The k-star of a vertex: vertices with their star number (0 for the centre), and the faces incident to
+// vertices of star number < k.
+struct KStar {
+  std::vector<TriMesh::VertexHandle> vertices;  // vertices[0] is the centre
+  std::vector<int> ring;                        // star number of each vertex
+  std::vector<TriMesh::FaceHandle> faces;
+};
+// Per-thread scratch space for k-star collection (sized to the mesh).
+struct StarScratch {
+  std::vector<int> vertex_mark, face_mark, local;
+  int stamp = 0;
+  explicit StarScratch(const TriMesh& mesh);
+};
+void collect_k_star(const TriMesh& mesh, TriMesh::VertexHandle v, int k, KStar& star, StarScratch& scratch);
+
+// Floater parametrization of a k-star homeomorphic to a disk: border on a circle (arc length kept),
+// interior vertices as convex combinations of their neighbours (Eq 3.1-3.3, weights Eq 3.4-3.5 or
+// shape-preserving), solved with an Eigen sparse LU. `uv` gets one point per star vertex.
+// Returns false when the star is not a disk (the caller falls back to the tangential Laplacian).
+bool compute_parametrization(const TriMesh& mesh, const KStar& star, ParametrizationWeights weights,
+                             StarScratch& scratch, std::vector<Eigen::Vector2d>& uv);
+
+// ---- low_pass_filter.cpp (section 4.3, Algorithm 3) ---------------------------------------------------
+
+// New position of one interior vertex: Laplacian with weights 1/2^(star-1) in the local parametrization
+// of its kl_i-star (Eq 4.4), or the tangential Laplacian when the star is not a disk.
+Vec3 low_pass_position(const TriMesh& mesh, TriMesh::VertexHandle v, int kl, ParametrizationWeights weights,
+                       StarScratch& scratch);
+// Moves a border vertex along the quadratic curve through its two border edges, minimising Eq 4.1.
+// Returns false if it was not moved.
+bool border_optimizer(TriMesh& mesh, TriMesh::VertexHandle v, double m);
+// One pass of Algorithm 3 over the whole mesh (OpenMP over vertices, applied in vertex order).
+void low_pass_filter(TriMesh& mesh, int kl, ParametrizationWeights weights, double m);
+
+// ---- nonlinear_optimizer.cpp (section 4.4) ------------------------------------------------------------
+
+struct NonlinearResult {
+  std::size_t troubling = 0;  // long+short edges before
+  std::size_t regions = 0;    // regions optimised
+};
+// Minimises Error_b (Eq 4.7) over tangent-plane displacements of the kn-star around each troubling edge,
+// edges by priority p_j = n_l + n_s (ties by edge index). Border vertices stay fixed; border endpoints of
+// a troubling edge go through border_optimizer.
+NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double emax);
+
+// ---- projection.cpp (section 4.5, Algorithm 4) --------------------------------------------------------
+
+// The projection mesh M_p with its spatial index (a CGAL kd-tree over its vertices).
+class ProjectionTarget {
+ public:
+  explicit ProjectionTarget(const TriMesh& target);
+  ~ProjectionTarget();
+  ProjectionTarget(const ProjectionTarget&) = delete;
+  ProjectionTarget& operator=(const ProjectionTarget&) = delete;
+  // Algorithm 4 for one point: candidate triangles around the k nearest target vertices, scored by the
+  // neighbourhood-aware distance |V-P| + sum_k ||V-V_k| - |P-V_k||.
+  Vec3 project(const Vec3& v, const std::vector<Vec3>& neighbors, int k = 10) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+// Projects every vertex of `mesh` onto the target (OpenMP over vertices, applied in vertex order).
+void projection(const ProjectionTarget& target, TriMesh& mesh);
+
+// ---- post_process.cpp (section 4.6) -------------------------------------------------------------------
+
+// Runs the nonlinear optimizer without projection while the number of long+short edges decreases;
+// keeps the best state. Returns the number of rounds that improved.
+int post_process(TriMesh& mesh, int kn, double emin, double emax);
+
+}  // namespace carbonmesh

@@ -1,0 +1,243 @@
+// Section 4.4: nonlinear optimizer of Error_b (Eq 4.7) around troubling edges, by priority.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "carbonmesh/remesh/remesh_steps.hpp"
+#include "remesh_geometry.hpp"
+
+namespace carbonmesh {
+namespace {
+
+using VH = TriMesh::VertexHandle;
+
+constexpr double kMaxNormalTurnCos = 0.3;
+constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
+
+bool troubling(const TriMesh& mesh, TriMesh::EdgeHandle e, double emin, double emax) {
+  const double l = geometry::edge_length(mesh, e);
+  return l < emin || l > emax;
+}
+
+// Vertices within `k` rings of the two ends of an edge (ring 0: the ends), in BFS order.
+struct EdgeStar {
+  std::vector<VH> vertices;
+  std::vector<int> ring;
+};
+
+struct Marks {
+  std::vector<int> vertex, edge, local;
+  int stamp = 0;
+  explicit Marks(const TriMesh& mesh)
+      : vertex(mesh.n_vertices(), 0), edge(mesh.n_edges(), 0), local(mesh.n_vertices(), -1) {}
+};
+
+void collect_edge_star(const TriMesh& mesh, TriMesh::EdgeHandle e, int k, EdgeStar& star, Marks& marks) {
+  ++marks.stamp;
+  star.vertices.clear();
+  star.ring.clear();
+  auto visit = [&](VH w, int r) {
+    marks.vertex[static_cast<std::size_t>(w.idx())] = marks.stamp;
+    marks.local[static_cast<std::size_t>(w.idx())] = static_cast<int>(star.vertices.size());
+    star.vertices.push_back(w);
+    star.ring.push_back(r);
+  };
+  const auto h = mesh.halfedge_handle(e, 0);
+  visit(mesh.from_vertex_handle(h), 0);
+  visit(mesh.to_vertex_handle(h), 0);
+  std::size_t begin = 0;
+  for (int r = 1; r <= k; ++r) {
+    const std::size_t end = star.vertices.size();
+    for (std::size_t i = begin; i < end; ++i)
+      for (auto w : mesh.vv_range(star.vertices[i]))
+        if (marks.vertex[static_cast<std::size_t>(w.idx())] != marks.stamp) visit(w, r);
+    begin = end;
+  }
+}
+
+// p_j = n_l + n_s: troubling edges of the kn-star of the edge (edges at a vertex of star number < kn).
+int priority(const TriMesh& mesh, const EdgeStar& star, int kn, const std::vector<char>& is_troubling, Marks& marks) {
+  int count = 0;
+  for (std::size_t i = 0; i < star.vertices.size() && star.ring[i] < kn; ++i) {
+    for (auto he : mesh.voh_range(star.vertices[i])) {
+      const auto e = mesh.edge_handle(he);
+      auto& mark = marks.edge[static_cast<std::size_t>(e.idx())];
+      if (mark == marks.stamp) continue;
+      mark = marks.stamp;
+      count += is_troubling[static_cast<std::size_t>(e.idx())];
+    }
+  }
+  return count;
+}
+
+// Minimises Error_b (Eq 4.7) over the tangent displacements (alpha_i, beta_i) of `variables` with
+// Levenberg-Marquardt; the other vertices stay fixed. Applies the result if no face folds.
+void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emin, double emax, double outside_weight,
+                     Marks& marks) {
+  const double m = 0.5 * (emin + emax);
+  const int nv = static_cast<int>(variables.size());
+  ++marks.stamp;
+  for (int i = 0; i < nv; ++i) {
+    marks.vertex[static_cast<std::size_t>(variables[static_cast<std::size_t>(i)].idx())] = marks.stamp;
+    marks.local[static_cast<std::size_t>(variables[static_cast<std::size_t>(i)].idx())] = i;
+  }
+  auto var_index = [&](VH w) {
+    return marks.vertex[static_cast<std::size_t>(w.idx())] == marks.stamp ? marks.local[static_cast<std::size_t>(w.idx())] : -1;
+  };
+  // Residual edges: every edge at a variable vertex, once.
+  struct Term {
+    int a, b;  // variable indices (b may be -1)
+    VH va, vb;
+    double weight;  // outside_weight for an edge outside [emin, emax] at the start, else 1
+  };
+  std::vector<Term> terms;
+  for (int i = 0; i < nv; ++i) {
+    const VH v = variables[static_cast<std::size_t>(i)];
+    for (auto w : mesh.vv_range(v)) {
+      const int j = var_index(w);
+      if (j >= 0 && j < i) continue;  // counted from the other end
+      const double l = (mesh.point(v) - mesh.point(w)).norm();
+      terms.push_back({i, j, v, w, l < emin || l > emax ? outside_weight : 1.0});
+    }
+  }
+  std::vector<Vec3> base(static_cast<std::size_t>(nv)), t1(static_cast<std::size_t>(nv)), t2(static_cast<std::size_t>(nv));
+  for (int i = 0; i < nv; ++i) {
+    const VH v = variables[static_cast<std::size_t>(i)];
+    base[static_cast<std::size_t>(i)] = mesh.point(v);
+    geometry::tangent_basis(geometry::vertex_normal(mesh, v), t1[static_cast<std::size_t>(i)], t2[static_cast<std::size_t>(i)]);
+  }
+  const double m2 = m * m;
+  auto position = [&](const Eigen::VectorXd& x, int i) {
+    const auto s = static_cast<std::size_t>(i);
+    return base[s] + x[2 * i] * t1[s] + x[2 * i + 1] * t2[s];
+  };
+  auto point_of = [&](const Eigen::VectorXd& x, int index, VH v) { return index >= 0 ? position(x, index) : mesh.point(v); };
+  auto energy = [&](const Eigen::VectorXd& x) {  // Error_b, Eq 4.7
+    double e = 0;
+    for (const Term& t : terms) {
+      const double r = (point_of(x, t.a, t.va) - point_of(x, t.b, t.vb)).sqrnorm() - m2;
+      e += t.weight * r * r;
+    }
+    return e;
+  };
+  const int dim = 2 * nv;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(dim);
+  double current = energy(x);
+  double mu = 1e-3;
+  Eigen::MatrixXd jtj(dim, dim);
+  Eigen::VectorXd jtr(dim);
+  for (int it = 0; it < 20 && current > 0; ++it) {
+    jtj.setZero();
+    jtr.setZero();
+    for (const Term& t : terms) {
+      const Vec3 d = point_of(x, t.a, t.va) - point_of(x, t.b, t.vb);
+      const double r = d.sqrnorm() - m2;
+      double g[4];
+      int idx[4], c = 0;
+      const auto sa = static_cast<std::size_t>(t.a);
+      g[c] = 2 * OpenMesh::dot(d, t1[sa]), idx[c++] = 2 * t.a;
+      g[c] = 2 * OpenMesh::dot(d, t2[sa]), idx[c++] = 2 * t.a + 1;
+      if (t.b >= 0) {
+        const auto sb = static_cast<std::size_t>(t.b);
+        g[c] = -2 * OpenMesh::dot(d, t1[sb]), idx[c++] = 2 * t.b;
+        g[c] = -2 * OpenMesh::dot(d, t2[sb]), idx[c++] = 2 * t.b + 1;
+      }
+      for (int p = 0; p < c; ++p) {
+        jtr[idx[p]] += t.weight * g[p] * r;
+        for (int q = 0; q < c; ++q) jtj(idx[p], idx[q]) += t.weight * g[p] * g[q];
+      }
+    }
+    bool improved = false;
+    for (int tries = 0; tries < 8 && !improved; ++tries) {
+      Eigen::MatrixXd h = jtj;
+      for (int i = 0; i < dim; ++i) h(i, i) += mu * (jtj(i, i) + 1e-12 * (1 + m2));
+      const Eigen::VectorXd step = -h.ldlt().solve(jtr);
+      if (!step.allFinite()) break;
+      const Eigen::VectorXd trial = x + step;
+      const double e = energy(trial);
+      if (e < current) {
+        const double gain = current - e;
+        x = trial;
+        current = e;
+        mu = std::max(mu / 3, 1e-9);
+        improved = true;
+        if (gain < 1e-10 * (1 + current)) it = 1000;
+      } else {
+        mu *= 4;
+      }
+    }
+    if (!improved) break;
+  }
+  // Apply, halving the displacement while some face folds or degenerates.
+  for (int attempt = 0; attempt < 5; ++attempt, x *= 0.5) {
+    bool ok = true;
+    for (int i = 0; i < nv && ok; ++i) {
+      for (auto f : mesh.vf_range(variables[static_cast<std::size_t>(i)])) {
+        Vec3 q[3];
+        int c = 0;
+        for (auto w : mesh.fv_range(f)) q[c++] = point_of(x, var_index(w), w);
+        const Vec3 before = geometry::face_normal(mesh, f), after = geometry::triangle_normal(q[0], q[1], q[2]);
+        if (OpenMesh::dot(before, after) < kMaxNormalTurnCos || geometry::min_angle(q[0], q[1], q[2]) < kMinAngle) {
+          ok = false;
+          break;
+        }
+      }
+    }
+    if (ok) {
+      for (int i = 0; i < nv; ++i) mesh.set_point(variables[static_cast<std::size_t>(i)], position(x, i));
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double emax) {
+  const double m = 0.5 * (emin + emax);
+  NonlinearResult result;
+  std::vector<char> is_troubling(mesh.n_edges(), 0);
+  std::vector<int> list;
+  for (auto e : mesh.edges()) {
+    if (mesh.status(e).deleted() || !troubling(mesh, e, emin, emax)) continue;
+    is_troubling[static_cast<std::size_t>(e.idx())] = 1;
+    list.push_back(e.idx());
+  }
+  result.troubling = list.size();
+  if (list.empty()) return result;
+  Marks marks(mesh);
+  EdgeStar star;
+  std::vector<std::pair<int, int>> ordered;  // (priority, edge)
+  for (int e : list) {
+    collect_edge_star(mesh, TriMesh::EdgeHandle(e), kn, star, marks);
+    ordered.emplace_back(priority(mesh, star, kn, is_troubling, marks), e);
+  }
+  std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  std::vector<VH> variables;
+  for (const auto& [p, index] : ordered) {
+    const TriMesh::EdgeHandle e(index);
+    if (!troubling(mesh, e, emin, emax)) continue;
+    // Border ends are never optimised here: they go through the border optimizer of section 4.3.2.
+    const auto h = mesh.halfedge_handle(e, 0);
+    for (VH v : {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h)})
+      if (mesh.is_boundary(v)) border_optimizer(mesh, v, m);
+    // Eq 4.7 on the kn-star; if the edge is still outside, again on a star one larger with the edges
+    // outside the interval weighted up.
+    for (int attempt = 0; attempt < 2 && troubling(mesh, e, emin, emax); ++attempt) {
+      const int k = kn + attempt;
+      collect_edge_star(mesh, e, k, star, marks);
+      variables.clear();
+      for (std::size_t i = 0; i < star.vertices.size() && star.ring[i] < k; ++i)
+        if (!mesh.is_boundary(star.vertices[i])) variables.push_back(star.vertices[i]);
+      if (variables.empty()) break;
+      optimize_region(mesh, variables, emin, emax, attempt == 0 ? 1.0 : 10.0, marks);
+      ++result.regions;
+    }
+  }
+  return result;
+}
+
+}  // namespace carbonmesh

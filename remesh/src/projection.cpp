@@ -1,0 +1,173 @@
+// Section 4.5: projection onto the projection mesh M_p (Algorithm 4) with a CGAL kd-tree.
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Search_traits_3.h>
+#include <CGAL/Search_traits_adapter.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <algorithm>
+#include <array>
+#include <boost/iterator/counting_iterator.hpp>
+#include <cmath>
+#include <vector>
+
+#include "carbonmesh/remesh/remesh_steps.hpp"
+
+namespace carbonmesh {
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point = Kernel::Point_3;
+
+// Index -> point property map for the kd-tree (the tree stores vertex indices).
+struct PointMap {
+  using key_type = std::size_t;
+  using value_type = Point;
+  using reference = const Point&;
+  using category = boost::readable_property_map_tag;
+  const std::vector<Point>* points = nullptr;
+  friend reference get(const PointMap& map, key_type i) { return (*map.points)[i]; }
+};
+
+using BaseTraits = CGAL::Search_traits_3<Kernel>;
+using Traits = CGAL::Search_traits_adapter<std::size_t, PointMap, BaseTraits>;
+using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
+using Tree = Search::Tree;
+using Distance = Search::Distance;
+
+// Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5).
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = OpenMesh::dot(ab, ap), d2 = OpenMesh::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = OpenMesh::dot(ab, bp), d4 = OpenMesh::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = OpenMesh::dot(ab, cp), d6 = OpenMesh::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+}  // namespace
+
+struct ProjectionTarget::Impl {
+  std::vector<Vec3> points;
+  std::vector<Point> cgal_points;
+  std::vector<std::array<int, 3>> faces;
+  std::vector<int> vertex_face_begin, vertex_faces;  // CSR: faces around each vertex
+  PointMap map;
+  std::unique_ptr<Tree> tree;
+};
+
+ProjectionTarget::ProjectionTarget(const TriMesh& target) : impl_(std::make_unique<Impl>()) {
+  Impl& t = *impl_;
+  const std::size_t n = target.n_vertices();
+  t.points.resize(n);
+  t.cgal_points.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = target.point(TriMesh::VertexHandle(static_cast<int>(i)));
+    t.points[i] = p;
+    t.cgal_points[i] = Point(p[0], p[1], p[2]);
+  }
+  std::vector<int> count(n + 1, 0);
+  for (auto f : target.faces()) {
+    std::array<int, 3> tri{};
+    int i = 0;
+    for (auto v : target.fv_range(f)) tri[static_cast<std::size_t>(i++)] = v.idx();
+    t.faces.push_back(tri);
+    for (int v : tri) ++count[static_cast<std::size_t>(v) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
+  t.vertex_face_begin = count;
+  t.vertex_faces.resize(static_cast<std::size_t>(count[n]));
+  std::vector<int> fill(count.begin(), count.end() - 1);
+  for (std::size_t f = 0; f < t.faces.size(); ++f)
+    for (int v : t.faces[f]) t.vertex_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(f);
+  // Only vertices used by a face go into the tree.
+  std::vector<std::size_t> used;
+  for (std::size_t i = 0; i < n; ++i)
+    if (count[i + 1] > count[i]) used.push_back(i);
+  t.map.points = &t.cgal_points;
+  t.tree = std::make_unique<Tree>(used.begin(), used.end(), Tree::Splitter(), Traits(t.map));
+  t.tree->build();  // before any (concurrent, read-only) query
+}
+
+ProjectionTarget::~ProjectionTarget() = default;
+
+Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors, int k) const {
+  const Impl& t = *impl_;
+  const Distance distance(t.map);
+  const Search search(*t.tree, Point(v[0], v[1], v[2]), static_cast<unsigned>(k), 0, true, distance);
+  std::vector<int> candidates;
+  for (auto it = search.begin(); it != search.end(); ++it) {
+    const std::size_t i = it->first;
+    for (int j = t.vertex_face_begin[i]; j < t.vertex_face_begin[i + 1]; ++j)
+      candidates.push_back(t.vertex_faces[static_cast<std::size_t>(j)]);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  struct Candidate {
+    double distance;
+    int face;
+    Vec3 point;
+  };
+  std::vector<Candidate> projections;
+  projections.reserve(candidates.size());
+  for (int f : candidates) {
+    const auto& tri = t.faces[static_cast<std::size_t>(f)];
+    const Vec3 p = closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
+                                             t.points[static_cast<std::size_t>(tri[1])],
+                                             t.points[static_cast<std::size_t>(tri[2])]);
+    projections.push_back({(v - p).norm(), f, p});
+  }
+  std::sort(projections.begin(), projections.end(), [](const Candidate& a, const Candidate& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.face < b.face;
+  });
+  std::vector<double> neighbor_lengths(neighbors.size());
+  for (std::size_t j = 0; j < neighbors.size(); ++j) neighbor_lengths[j] = (v - neighbors[j]).norm();
+  Vec3 best = v;
+  double best_score = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : projections) {
+    // |V - P| bounds the score from below: no later candidate can win.
+    if (c.distance >= best_score) break;
+    // Neighbourhood-aware distance (section 4.5): |V - P| plus how much the edges to the neighbours change.
+    double score = c.distance;
+    for (std::size_t j = 0; j < neighbors.size(); ++j)
+      score += std::abs(neighbor_lengths[j] - (c.point - neighbors[j]).norm());
+    if (score < best_score) {
+      best_score = score;
+      best = c.point;
+    }
+  }
+  return best;
+}
+
+void projection(const ProjectionTarget& target, TriMesh& mesh) {
+  const int n = static_cast<int>(mesh.n_vertices());
+  std::vector<Vec3> projected(static_cast<std::size_t>(n));
+#pragma omp parallel
+  {
+    std::vector<Vec3> neighbors;
+#pragma omp for schedule(dynamic, 256)
+    for (int i = 0; i < n; ++i) {
+      const TriMesh::VertexHandle v(i);
+      if (mesh.status(v).deleted() || mesh.is_isolated(v)) {
+        projected[static_cast<std::size_t>(i)] = mesh.point(v);
+        continue;
+      }
+      neighbors.clear();
+      for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
+      projected[static_cast<std::size_t>(i)] = target.project(mesh.point(v), neighbors);
+    }
+  }
+  for (int i = 0; i < n; ++i) mesh.set_point(TriMesh::VertexHandle(i), projected[static_cast<std::size_t>(i)]);
+}
+
+}  // namespace carbonmesh

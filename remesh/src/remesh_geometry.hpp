@@ -1,0 +1,71 @@
+#pragma once
+// Small geometric helpers shared by the remesher steps (internal).
+#include <algorithm>
+#include <cmath>
+
+#include "carbonmesh/remesh/mesh.hpp"
+
+namespace carbonmesh::geometry {
+
+inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
+  Vec3 n = OpenMesh::cross(b - a, c - a);
+  const double l = n.norm();
+  return l > 0 ? n / l : Vec3(0, 0, 0);
+}
+
+inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return 0.5 * OpenMesh::cross(b - a, c - a).norm();
+}
+
+// Smallest interior angle (radians) of a triangle; 0 for a degenerate one.
+inline double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+    const Vec3 u = q - p, v = r - p;
+    const double lu = u.norm(), lv = v.norm();
+    if (lu <= 0 || lv <= 0) return 0.0;
+    return std::acos(std::clamp(OpenMesh::dot(u, v) / (lu * lv), -1.0, 1.0));
+  };
+  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+}
+
+// Corner positions of a face.
+inline void face_points(const TriMesh& mesh, TriMesh::FaceHandle f, Vec3& a, Vec3& b, Vec3& c) {
+  auto h = mesh.halfedge_handle(f);
+  a = mesh.point(mesh.to_vertex_handle(h));
+  h = mesh.next_halfedge_handle(h);
+  b = mesh.point(mesh.to_vertex_handle(h));
+  h = mesh.next_halfedge_handle(h);
+  c = mesh.point(mesh.to_vertex_handle(h));
+}
+
+inline Vec3 face_normal(const TriMesh& mesh, TriMesh::FaceHandle f) {
+  Vec3 a, b, c;
+  face_points(mesh, f, a, b, c);
+  return triangle_normal(a, b, c);
+}
+
+// Area-weighted vertex normal computed from the current positions.
+inline Vec3 vertex_normal(const TriMesh& mesh, TriMesh::VertexHandle v) {
+  Vec3 n(0, 0, 0);
+  for (auto f : mesh.vf_range(v)) {
+    Vec3 a, b, c;
+    face_points(mesh, f, a, b, c);
+    n += OpenMesh::cross(b - a, c - a);
+  }
+  const double l = n.norm();
+  return l > 0 ? n / l : Vec3(0, 0, 1);
+}
+
+// Two unit vectors spanning the plane orthogonal to the unit vector n.
+inline void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  const Vec3 a = std::abs(n[0]) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  t1 = OpenMesh::cross(n, a).normalized();
+  t2 = OpenMesh::cross(n, t1);
+}
+
+inline double edge_length(const TriMesh& mesh, TriMesh::EdgeHandle e) {
+  const auto h = mesh.halfedge_handle(e, 0);
+  return (mesh.point(mesh.to_vertex_handle(h)) - mesh.point(mesh.from_vertex_handle(h))).norm();
+}
+
+}  // namespace carbonmesh::geometry

@@ -1,0 +1,157 @@
+// Algorithm 1 (UniformRemeshing): the interval-constraining remesher.
+#include "carbonmesh/remesh/remesher.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/remesh_steps.hpp"
+
+namespace carbonmesh {
+namespace {
+
+void validate(const RemeshSettings& s) {
+  if (!(s.emin > 0)) throw InputError(fmt::format("emin {} must be positive", s.emin));
+  if (!(s.emin < s.emax)) throw InputError(fmt::format("emin {} must be smaller than emax {}", s.emin, s.emax));
+  if (s.iterations < 0) throw InputError(fmt::format("iterations {} must not be negative", s.iterations));
+  if (s.kl < 1 || s.kn < 1) throw InputError(fmt::format("kl {} and kn {} must be at least 1", s.kl, s.kn));
+  if (s.p < 0) throw InputError(fmt::format("p {} must not be negative", s.p));
+  if (!(s.l >= 0)) throw InputError(fmt::format("l {} must not be negative", s.l));
+}
+
+// The best mesh so far: fewest long+short edges, ties by the higher share of regular vertices.
+struct BestMesh {
+  TriMesh mesh;
+  std::size_t troubling = 0;
+  double percent_regular = 0;
+  bool better(std::size_t t, double regular) const {
+    return t < troubling || (t == troubling && regular > percent_regular);
+  }
+};
+
+// CalcEdgesPercent of Algorithm 1: long+short edges as a percentage of all edges.
+double troubling_percent(const EdgeStats& e) {
+  return e.count == 0 ? 0.0 : 100.0 * static_cast<double>(e.long_edges + e.short_edges) / static_cast<double>(e.count);
+}
+
+}  // namespace
+
+RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
+  validate(s);
+  const auto start = std::chrono::steady_clock::now();
+  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  RemeshResult result;
+  result.before = topology(mesh);
+  mesh.garbage_collection();
+  const double m = 0.5 * (s.emin + s.emax);
+  const EdgeInterval interval{s.emin, s.emax};
+
+  auto target = std::make_unique<TriMesh>(mesh);  // M: the projection mesh
+  auto projection_target = std::make_unique<ProjectionTarget>(*target);
+  EdgeStats edges = edge_stats(mesh, interval);
+  BestMesh best{mesh, edges.long_edges + edges.short_edges, valence_stats(mesh).percent_regular};
+
+  int iteration = 0;
+  std::size_t troubling_before = std::numeric_limits<std::size_t>::max();
+  while (edges.long_edges + edges.short_edges > 0 && iteration < s.iterations) {
+    if (s.p > 0 && iteration > 0 && iteration % s.p == 0) {
+      target = std::make_unique<TriMesh>(mesh);
+      projection_target = std::make_unique<ProjectionTarget>(*target);
+    }
+    // Few long and short edges left (the nonlinear phase): splitting an edge just above emax or collapsing
+    // one just below emin only trades it for new short or long ones when emax < 2 emin, so edges within a
+    // quarter interval width outside are left to the nonlinear optimizer, and flips keep edges inside.
+    // When that phase stalls (no fewer long+short edges than before), the full stellar step runs again.
+    const std::size_t troubling_now = edges.long_edges + edges.short_edges;
+    const bool nonlinear_phase = troubling_percent(edges) <= s.l && troubling_now < troubling_before;
+    troubling_before = troubling_now;
+    IntermediateInterval step = intermediate_interval(edges.mean, s.emin, s.emax);
+    if (nonlinear_phase) step = {s.emin - 0.25 * (s.emax - s.emin), s.emax + 0.25 * (s.emax - s.emin)};
+    const StellarResult stellar = stellar_operations(mesh, step.emin, step.emax, m);
+    mesh.garbage_collection();
+    const std::size_t flips = correct_valence(mesh, m, nonlinear_phase ? &interval : nullptr);
+    spdlog::debug("iteration {}: interval [{:.4f}, {:.4f}], {} splits, {} collapses, {} flips", iteration + 1,
+                  step.emin, step.emax, stellar.splits, stellar.collapses, flips);
+    edges = edge_stats(mesh, interval);
+    const bool nonlinear = troubling_percent(edges) <= s.l;
+    const double t_smooth = seconds();
+    if (nonlinear)
+      nonlinear_optimizer(mesh, s.kn, s.emin, s.emax);
+    else
+      low_pass_filter(mesh, s.kl, s.weights, m);
+    const double t_project = seconds();
+    projection(*projection_target, mesh);
+    spdlog::debug("iteration {}: {} {:.3f}s, projection {:.3f}s", iteration + 1,
+                  nonlinear ? "nonlinear optimizer" : "low-pass filter", t_project - t_smooth, seconds() - t_project);
+    ++iteration;
+
+    edges = edge_stats(mesh, interval);
+    const ValenceStats valence = valence_stats(mesh);
+    IterationLog log;
+    log.iteration = iteration;
+    log.long_edges = edges.long_edges;
+    log.short_edges = edges.short_edges;
+    log.percent_regular = valence.percent_regular;
+    log.mean = edges.mean;
+    log.std = edges.std;
+    log.seconds = seconds();
+    log.nonlinear = nonlinear;
+    result.log.push_back(log);
+    if (s.on_iteration) s.on_iteration(log);
+    if (best.better(edges.long_edges + edges.short_edges, valence.percent_regular))
+      best = BestMesh{mesh, edges.long_edges + edges.short_edges, valence.percent_regular};
+  }
+  result.iterations = iteration;
+  if (edges.long_edges + edges.short_edges > 0) {
+    mesh = best.mesh;
+    post_process(mesh, s.kn, s.emin, s.emax);
+    result.post_processed = true;
+  }
+  mesh.update_normals();
+  edges = edge_stats(mesh, interval);
+  const ValenceStats valence = valence_stats(mesh);
+  result.long_edges = edges.long_edges;
+  result.short_edges = edges.short_edges;
+  result.converged = result.long_edges + result.short_edges == 0;
+  result.percent_regular = valence.percent_regular;
+  result.percent_eval_gt1 = valence.percent_eval_gt1;
+  result.after = topology(mesh);
+  result.seconds = seconds();
+  if (!result.before.same_type(result.after))
+    spdlog::error("remesh changed the surface type: genus {} -> {}, components {} -> {}, borders {} -> {}",
+                  result.before.genus, result.after.genus, result.before.components, result.after.components,
+                  result.before.boundary_loops, result.after.boundary_loops);
+  return result;
+}
+
+nlohmann::json to_json(const RemeshResult& r) {
+  nlohmann::json log = nlohmann::json::array();
+  for (const auto& l : r.log)
+    log.push_back({{"iteration", l.iteration},
+                   {"long", l.long_edges},
+                   {"short", l.short_edges},
+                   {"percent_regular", l.percent_regular},
+                   {"mean", l.mean},
+                   {"std", l.std},
+                   {"seconds", l.seconds},
+                   {"nonlinear", l.nonlinear}});
+  return {{"converged", r.converged},
+          {"iterations", r.iterations},
+          {"post_processed", r.post_processed},
+          {"long", r.long_edges},
+          {"short", r.short_edges},
+          {"percent_regular", r.percent_regular},
+          {"percent_eval_gt1", r.percent_eval_gt1},
+          {"seconds", r.seconds},
+          {"topology_before", to_json(r.before)},
+          {"topology_after", to_json(r.after)},
+          {"topology_kept", r.before.same_type(r.after)},
+          {"log", log}};
+}
+
+}  // namespace carbonmesh

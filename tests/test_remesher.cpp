@@ -1,0 +1,159 @@
+// The interval-constraining remesher: convergence into [emin, emax] on built-in shapes, topology kept,
+// refused collapses, determinism.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/remesh_steps.hpp"
+#include "carbonmesh/remesh/remesher.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+
+namespace carbonmesh {
+namespace {
+
+// Scales a mesh about the origin so that its mean edge length is `mean`.
+TriMesh scaled(TriMesh mesh, double mean) {
+  const double factor = mean / edge_stats(mesh).mean;
+  for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * factor);
+  return mesh;
+}
+
+TriMesh sphere(int subdivisions, double mean) { return scaled(make_icosphere({10.0, subdivisions}), mean); }
+TriMesh torus(double edge, double mean) { return scaled(make_torus({10.0, 4.0, edge}), mean); }
+
+void expect_converges(TriMesh mesh) {
+  const Topology before = topology(mesh);
+  RemeshSettings settings;  // [1.2, 1.8], the dissertation protocol
+  const RemeshResult result = remesh(mesh, settings);
+  const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges, 0u);
+  EXPECT_EQ(edges.short_edges, 0u);
+  EXPECT_GE(edges.min, 1.2);
+  EXPECT_LE(edges.max, 1.8);
+  EXPECT_TRUE(result.converged);
+  EXPECT_EQ(result.long_edges, 0u);
+  EXPECT_EQ(result.short_edges, 0u);
+  const Topology after = topology(mesh);
+  EXPECT_TRUE(before.same_type(after));
+  EXPECT_TRUE(result.before.same_type(result.after));
+  EXPECT_EQ(after.genus, before.genus);
+  EXPECT_EQ(valence_stats(mesh).percent_eval_gt1, 0.0);
+}
+
+TEST(Remesher, SphereWithMeanEdge225Converges) { expect_converges(sphere(3, 2.25)); }
+TEST(Remesher, TorusWithMeanEdge225Converges) { expect_converges(torus(0.0, 2.25)); }
+TEST(Remesher, RefinedSphereWithMeanEdge1Converges) { expect_converges(sphere(4, 1.0)); }
+TEST(Remesher, RefinedTorusWithMeanEdge1Converges) { expect_converges(torus(1.0, 1.0)); }
+
+TEST(Remesher, IsDeterministic) {
+  TriMesh a = torus(0.0, 2.25), b = torus(0.0, 2.25);
+  RemeshSettings settings;
+  settings.iterations = 10;
+  remesh(a, settings);
+  remesh(b, settings);
+  ASSERT_EQ(a.n_vertices(), b.n_vertices());
+  ASSERT_EQ(a.n_faces(), b.n_faces());
+  for (auto v : a.vertices()) ASSERT_EQ(a.point(v), b.point(TriMesh::VertexHandle(v.idx())));
+  for (auto f : a.faces()) {
+    std::vector<int> fa, fb;
+    for (auto v : a.fv_range(f)) fa.push_back(v.idx());
+    for (auto v : b.fv_range(TriMesh::FaceHandle(f.idx()))) fb.push_back(v.idx());
+    ASSERT_EQ(fa, fb);
+  }
+}
+
+TEST(Remesher, RejectsAnInvalidInterval) {
+  TriMesh mesh = sphere(1, 2.25);
+  RemeshSettings settings;
+  settings.emin = 0;
+  EXPECT_THROW(remesh(mesh, settings), InputError);
+  settings.emin = 1.8;
+  settings.emax = 1.2;
+  EXPECT_THROW(remesh(mesh, settings), InputError);
+}
+
+// A tetrahedron whose face (0, 2, 1) is split by vertex 4: vertices 0 and 1 share the neighbours 2, 3 and 4,
+// but only 3 and 4 are opposite the edge, so collapsing 0-1 breaks the link condition.
+TriMesh split_tetrahedron() {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> v;
+  for (const Vec3& p : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(0.33, 0.33, -0.2)})
+    v.push_back(mesh.add_vertex(p));
+  for (auto f : std::vector<std::array<int, 3>>{{0, 2, 4}, {2, 1, 4}, {1, 0, 4}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}})
+    mesh.add_face(v[static_cast<std::size_t>(f[0])], v[static_cast<std::size_t>(f[1])], v[static_cast<std::size_t>(f[2])]);
+  return mesh;
+}
+
+TEST(CollapseCheck, RefusesACollapseBreakingTheLinkCondition) {
+  TriMesh mesh = split_tetrahedron();
+  ASSERT_EQ(mesh.n_faces(), 6u);
+  const auto h = mesh.find_halfedge(TriMesh::VertexHandle(0), TriMesh::VertexHandle(1));
+  ASSERT_TRUE(h.is_valid());
+  EXPECT_FALSE(collapse_keeps_topology(mesh, h));
+  EXPECT_FALSE(collapse_keeps_topology(mesh, mesh.opposite_halfedge_handle(h)));
+  EXPECT_FALSE(collapse_ok(mesh, h, Vec3(0.5, 0, 0), 100.0));
+  // Edge 3-4 has no common neighbour beyond 0, 1 and 2... but it is not an edge; edge 0-3 is fine.
+  const auto ok = mesh.find_halfedge(TriMesh::VertexHandle(3), TriMesh::VertexHandle(0));
+  EXPECT_TRUE(collapse_keeps_topology(mesh, ok));
+}
+
+TEST(CollapseCheck, RefusesCollapsingATetrahedron) {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> v;
+  for (const Vec3& p : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}) v.push_back(mesh.add_vertex(p));
+  mesh.add_face(v[0], v[2], v[1]);
+  mesh.add_face(v[0], v[1], v[3]);
+  mesh.add_face(v[1], v[2], v[3]);
+  mesh.add_face(v[2], v[0], v[3]);
+  for (auto h : mesh.halfedges()) EXPECT_FALSE(collapse_keeps_topology(mesh, h));
+}
+
+TEST(CollapseCheck, RefusesAnInteriorEdgeBetweenBorderVertices) {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> v;
+  for (const Vec3& p : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}) v.push_back(mesh.add_vertex(p));
+  mesh.add_face(v[0], v[1], v[2]);
+  mesh.add_face(v[0], v[2], v[3]);
+  const auto h = mesh.find_halfedge(v[0], v[2]);
+  EXPECT_FALSE(collapse_keeps_topology(mesh, h));
+  EXPECT_FALSE(collapse_keeps_topology(mesh, mesh.opposite_halfedge_handle(h)));
+}
+
+TEST(CollapseCheck, NeverClosesATriangularBorder) {
+  TriMesh mesh = make_icosphere({10.0, 2});
+  mesh.delete_face(TriMesh::FaceHandle(0), false);
+  mesh.garbage_collection();
+  int border = 0;
+  for (auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(mesh.edge_handle(h))) continue;
+    ++border;
+    EXPECT_FALSE(collapse_keeps_topology(mesh, h));
+  }
+  EXPECT_EQ(border, 6);  // three border edges, both half-edges
+}
+
+TEST(CollapseCheck, AcceptsAnOrdinaryCollapse) {
+  TriMesh mesh = make_icosphere({10.0, 3});
+  // A valence-6 vertex and one of its neighbours.
+  for (auto v : mesh.vertices()) {
+    if (mesh.valence(v) != 6) continue;
+    const auto h = *mesh.voh_range(v).begin();
+    const Vec3 mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+    EXPECT_TRUE(collapse_keeps_topology(mesh, h));
+    EXPECT_TRUE(collapse_ok(mesh, h, mid, 100.0));
+    EXPECT_FALSE(collapse_ok(mesh, h, mid, 1e-3));  // the new star would have long edges
+    break;
+  }
+}
+
+TEST(ValenceOptimizer, ImprovementOfAFlip) {
+  // On the regular icosphere no flip improves the valence.
+  TriMesh mesh = make_icosphere({10.0, 2});
+  for (auto e : mesh.edges()) EXPECT_LE(valence_improvement(mesh, e), 0);
+  EXPECT_EQ(correct_valence(mesh, 1.0), 0u);
+}
+
+}  // namespace
+}  // namespace carbonmesh

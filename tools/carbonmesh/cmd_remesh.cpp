@@ -1,0 +1,113 @@
+// `carbonmesh remesh IN OUT --emin A --emax B [--iterations 150] [--kl 2] [--kn 2] [--p 0] [--l 0.5]
+//  [--weights mean-value|shape-preserving] [--log convergence.csv] [--json] [--repair]`
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "carbonmesh/remesh/atomic_file.hpp"
+#include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/io.hpp"
+#include "carbonmesh/remesh/remesher.hpp"
+#include "commands.hpp"
+
+namespace carbonmesh::cli {
+namespace {
+
+std::string topology_text(const Topology& t) {
+  return fmt::format("genus {} components {} borders {}", t.genus, t.components, t.boundary_loops);
+}
+
+}  // namespace
+
+void add_remesh_command(CLI::App& app, Action& action) {
+  struct Options {
+    std::string in, out, log;
+    double emin = 0, emax = 0;
+    int iterations = 150, kl = 2, kn = 2, p = 0;
+    double l = 0.5;
+    ParametrizationWeights weights = ParametrizationWeights::MeanValue;
+    bool json = false, repair = false;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("remesh", "remesh so that every edge length lies in [emin, emax] (Algorithm 1)");
+  cmd->add_option("in", opt->in, "input mesh (.off .obj .ply .stl)")->required();
+  cmd->add_option("out", opt->out, "output mesh (.off .obj .ply .stl)")->required();
+  cmd->add_option("--emin", opt->emin, "lower bound of the edge interval")->required();
+  cmd->add_option("--emax", opt->emax, "upper bound of the edge interval")->required();
+  cmd->add_option("--iterations,-n", opt->iterations, "maximum number of iterations (n)")->default_val(150)->check(CLI::NonNegativeNumber);
+  cmd->add_option("--kl", opt->kl, "star number of the low-pass filter")->default_val(2)->check(CLI::PositiveNumber);
+  cmd->add_option("--kn", opt->kn, "star number of the nonlinear optimizer")->default_val(2)->check(CLI::PositiveNumber);
+  cmd->add_option("--p", opt->p, "replace the projection mesh every p iterations (0: never)")->default_val(0)->check(CLI::NonNegativeNumber);
+  cmd->add_option("--l", opt->l, "percent of long+short edges at or below which the nonlinear optimizer runs")
+      ->default_val(0.5)->check(CLI::NonNegativeNumber);
+  const std::map<std::string, ParametrizationWeights> weights{{"mean-value", ParametrizationWeights::MeanValue},
+                                                             {"shape-preserving", ParametrizationWeights::ShapePreserving}};
+  cmd->add_option("--weights", opt->weights, "parametrization weights: mean-value or shape-preserving")
+      ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
+  cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV");
+  cmd->add_flag("--json", opt->json, "final summary as one JSON object instead of text");
+  cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
+  cmd->callback([&action, opt] {
+    action = [opt]() -> int {
+      if (opt->emin <= 0) throw InputError(fmt::format("--emin {} must be positive", opt->emin));
+      if (opt->emin >= opt->emax)
+        throw InputError(fmt::format("--emin {} must be smaller than --emax {}", opt->emin, opt->emax));
+      if (opt->emin > 2.0 / 3.0 * opt->emax)
+        spdlog::warn("interval [{}, {}] is too tight: emin > 2/3 emax (dissertation Ineq 5.1), long and short edges may remain",
+                     opt->emin, opt->emax);
+      LoadSettings load;
+      load.repair = opt->repair;
+      TriMesh mesh = load_mesh(opt->in, load);
+      RemeshSettings settings;
+      settings.emin = opt->emin;
+      settings.emax = opt->emax;
+      settings.iterations = opt->iterations;
+      settings.kl = opt->kl;
+      settings.kn = opt->kn;
+      settings.p = opt->p;
+      settings.l = opt->l;
+      settings.weights = opt->weights;
+      std::ostringstream csv;
+      csv << "iteration,long,short,percent_regular,mean,std,seconds,nonlinear\n";
+      settings.on_iteration = [&csv](const IterationLog& l) {
+        spdlog::info("iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  std {:.4f}  {:.2f}s{}",
+                     l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.std, l.seconds,
+                     l.nonlinear ? "  (nonlinear)" : "");
+        csv << fmt::format("{},{},{},{:.4f},{:.6f},{:.6f},{:.3f},{}\n", l.iteration, l.long_edges, l.short_edges,
+                           l.percent_regular, l.mean, l.std, l.seconds, l.nonlinear ? 1 : 0);
+      };
+      const RemeshResult result = remesh(mesh, settings);
+      save_mesh(mesh, opt->out);
+      if (!opt->log.empty())
+        write_atomically(opt->log, [&csv](const std::filesystem::path& tmp) {
+          std::ofstream file(tmp);
+          file << csv.str();
+          if (!file) throw InputError(fmt::format("cannot write {}", tmp.string()));
+        });
+      if (opt->json) {
+        nlohmann::json j = to_json(result);
+        j["input"] = opt->in;
+        j["output"] = opt->out;
+        j["emin"] = opt->emin;
+        j["emax"] = opt->emax;
+        std::cout << j.dump(2) << "\n";
+      } else {
+        std::cout << fmt::format(
+            "{} -> {}\nlong {}  short {}  regular {:.2f}%  eval>1 {:.2f}%  iterations {}{}  {:.2f}s\n"
+            "before: {}\nafter:  {}{}\n",
+            opt->in, opt->out, result.long_edges, result.short_edges, result.percent_regular,
+            result.percent_eval_gt1, result.iterations, result.post_processed ? " (post-processed)" : "",
+            result.seconds, topology_text(result.before), topology_text(result.after),
+            result.before.same_type(result.after) ? "" : "  (SURFACE TYPE CHANGED)");
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace carbonmesh::cli
