@@ -349,7 +349,7 @@ TEST(MirrorPlane, FindsThePlaneOfARotatedSymmetricShapeWithZeroResidual) {
   MirrorSettings settings;
   settings.search_samples = 1500;
   settings.final_samples = 5000;
-  settings.evaluations_per_candidate = 40;
+  settings.evaluations_per_candidate = 100;
   const MirrorResult r = find_mirror_plane(mesh, settings);
   EXPECT_LT(r.residual.max, 1e-3 * r.diagonal);
   const Vec3 ey = rotate(Vec3(0, 1, 0)), ez = rotate(Vec3(0, 0, 1));

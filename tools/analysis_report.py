@@ -124,7 +124,8 @@ def plot_sides(report, path):
     sym = report["symmetry"]
     ax.set_title("Irregular rings by side of the %s plane, %s\n(mirror residual %.3g = %.2f%% of the diagonal)" % (
         sym["requested"], title_of(report), sym["residual"]["max"], 100 * sym["relative_residual"]), fontsize=10)
-    ax.legend()
+    ax.set_ylim(0, 1.3 * max(pos + neg + [1]))
+    ax.legend(loc="upper center", ncol=2)
     fig.tight_layout()
     save_figure(fig, path)
 
@@ -175,7 +176,12 @@ VIEW_JS = r"""
   // Atoms.
   const ag = new THREE.BufferGeometry();
   ag.setAttribute('position', new THREE.BufferAttribute(new Float32Array(a), 3));
-  const atoms = new THREE.Points(ag, new THREE.PointsMaterial({color: 0x222222, size: Math.max(0.02 * radius / Math.sqrt(Math.max(1, n / 60)), 0.15), sizeAttenuation: true}));
+  // Atom dots a quarter of the mean bond long (whatever the length unit of the input).
+  let bl = 0, bn = 0;
+  for (let e = 0; e < b.length && bn < 2000; e += 2, ++bn)
+    bl += Math.hypot(a[3*b[e]] - a[3*b[e+1]], a[3*b[e]+1] - a[3*b[e+1]+1], a[3*b[e]+2] - a[3*b[e+1]+2]);
+  const dot = bn ? 0.25 * bl / bn : 0.01 * radius;
+  const atoms = new THREE.Points(ag, new THREE.PointsMaterial({color: 0x222222, size: dot, sizeAttenuation: true}));
   group.add(atoms);
   // Defect rings: filled polygons (fan from the centroid) coloured by size.
   const colours = {3: 0xffd700, 4: 0xff7f0e, 5: 0xd62728, 7: 0x1f77b4, 8: 0x2ca02c};

@@ -133,6 +133,9 @@ RingStructure load_ring_structure(const ResolvedInput& in, const AnalysisSetting
     SpRingResult rings = find_sp_rings(graph, settings.rings);
     spdlog::info("{} SP rings (max size {}) from {} candidates, {:.2f} s", rings.rings.size(), settings.rings.max_size,
                  rings.candidates, t.lap());
+    if (rings.truncated_atoms)
+      spdlog::warn("{} atoms had more than {} ring candidates (over-bonded? check --cutoff): some rings may be missing",
+                   rings.truncated_atoms, settings.rings.max_candidates_per_atom);
     if (rings.truncated_ends)
       spdlog::warn("{} ring ends had more than {} shortest paths: some rings may be missing", rings.truncated_ends,
                    settings.rings.max_paths_per_end);
@@ -217,7 +220,9 @@ nlohmann::json to_json(const Analysis& a) {
   j["atoms"] = a.structure.atoms.atoms();
   j["bonds"] = a.structure.atoms.bonds.size();
   j["coordination"] = counts_json(a.coordination);
-  if (a.sp) j["sp_rings"] = {{"candidates", a.sp->candidates}, {"truncated_ends", a.sp->truncated_ends}};
+  if (a.sp)
+    j["sp_rings"] = {{"candidates", a.sp->candidates}, {"truncated_ends", a.sp->truncated_ends},
+                     {"truncated_atoms", a.sp->truncated_atoms}};
   std::size_t closed = 0, open = 0;
   for (const auto& [k, v] : a.sizes.closed) closed += v;
   for (const auto& [k, v] : a.sizes.open) open += v;

@@ -68,6 +68,7 @@ class Reader {
     line_no_ = line_no;
   }
   long line_no() const { return line_no_; }
+  std::size_t size() const { return text_.size(); }
   [[noreturn]] void fail(const std::string& what) const {
     throw InputError(fmt::format("{}:{}: {}", name_, line_no_, what));
   }
@@ -246,7 +247,8 @@ LammpsAtoms read_lammps_atoms(const std::filesystem::path& file) {
         if (!style) r.fail(fmt::format("atom style '{}' is not supported (atomic, full, molecular, bond, charge)", hint[0]));
       }
       skip_blank("Atoms");
-      const std::size_t reserve = static_cast<std::size_t>(std::min<long>(n_atoms, 10'000'000));
+      // An atom line has at least 10 characters: never reserve more than the file can hold.
+      const std::size_t reserve = std::min(static_cast<std::size_t>(n_atoms), r.size() / 10 + 1);
       data.ids.reserve(reserve);
       data.types.reserve(reserve);
       data.positions.reserve(reserve);

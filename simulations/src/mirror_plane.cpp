@@ -8,6 +8,13 @@
 #include <charconv>
 #include <cmath>
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <random>
+
 #include "carbonmesh/remesh/error.hpp"
 
 namespace carbonmesh {
@@ -56,6 +63,62 @@ void surface_moments(const TriMesh& mesh, Vec3& centroid, Eigen::Matrix3d& cov) 
   cov /= std::max(total, 1e-300);
   centroid = Vec3(c[0], c[1], c[2]);
 }
+
+// The search objective. Reflection is an isometry, so both one-sided Hausdorff distances between a surface S
+// and its mirror image M(S) equal max over p in S of d(M(p), S): one AABB tree of S, built once, and samples
+// of S reflected per candidate plane.
+class MirrorObjective {
+ public:
+  using Kernel = CGAL::Simple_cartesian<double>;
+  using Point = Kernel::Point_3;
+  using Triangle = Kernel::Triangle_3;
+  using Triangles = std::vector<Triangle>;
+  using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+  MirrorObjective(const TriMesh& mesh, std::size_t samples) {
+    std::vector<double> cumulative;
+    double total = 0;
+    for (auto f : mesh.faces()) {
+      auto it = mesh.cfv_iter(f);
+      const Vec3 a = mesh.point(*it++), b = mesh.point(*it++), c = mesh.point(*it);
+      triangles_.emplace_back(Point(a[0], a[1], a[2]), Point(b[0], b[1], b[2]), Point(c[0], c[1], c[2]));
+      total += 0.5 * OpenMesh::cross(b - a, c - a).norm();
+      cumulative.push_back(total);
+    }
+    tree_.insert(triangles_.begin(), triangles_.end());
+    tree_.build();
+    tree_.accelerate_distance_queries();
+    std::mt19937_64 rng(20261123);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (std::size_t k = 0; k < samples && total > 0; ++k) {
+      const std::size_t i = std::min<std::size_t>(
+          std::lower_bound(cumulative.begin(), cumulative.end(), u(rng) * total) - cumulative.begin(),
+          triangles_.size() - 1);
+      const double r1 = std::sqrt(u(rng)), r2 = u(rng);
+      const auto& t = triangles_[i];
+      const double wa = 1 - r1, wb = r1 * (1 - r2), wc = r1 * r2;
+      samples_.emplace_back(wa * t[0].x() + wb * t[1].x() + wc * t[2].x(), wa * t[0].y() + wb * t[1].y() + wc * t[2].y(),
+                            wa * t[0].z() + wb * t[1].z() + wc * t[2].z());
+    }
+  }
+  double operator()(const Plane& plane) const {
+    std::vector<double> d2(samples_.size());
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      const Vec3 m = reflect(samples_[i], plane);
+      d2[i] = tree_.squared_distance(Point(m[0], m[1], m[2]));
+    }
+    double max2 = 0;
+    for (double d : d2) max2 = std::max(max2, d);
+    return std::sqrt(max2);
+  }
+
+ private:
+  Triangles triangles_;
+  Tree tree_;
+  std::vector<Vec3> samples_;
+};
 
 Plane make_plane(const Vec3& n0, const Vec3& u, const Vec3& v, const Vec3& center, double a, double b, double t) {
   Plane p;
@@ -123,6 +186,7 @@ MirrorResult find_mirror_plane(const TriMesh& shape, const MirrorSettings& setti
   surface_moments(shape, center, cov);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
   const double diag = std::max(result.diagonal, 1e-12);
+  const MirrorObjective objective(shape, settings.search_samples);
   for (int axis = 2; axis >= 0; --axis) {
     const Eigen::Vector3d e = eig.eigenvectors().col(axis);
     const Vec3 n0 = Vec3(e[0], e[1], e[2]).normalized();
@@ -134,7 +198,7 @@ MirrorResult find_mirror_plane(const TriMesh& shape, const MirrorSettings& setti
     double x[3] = {0, 0, 0};
     auto eval = [&](const double* p) {
       ++cand.evaluations;
-      return mirror_residual(shape, make_plane(n0, u, v, center, p[0], p[1], p[2]), settings.search_samples).max;
+      return objective(make_plane(n0, u, v, center, p[0], p[1], p[2]));
     };
     double best = eval(x);
     cand.start = make_plane(n0, u, v, center, 0, 0, 0);

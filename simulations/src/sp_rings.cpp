@@ -108,8 +108,13 @@ void canonical(std::vector<int>& ring) {
 
 // SP rings whose smallest atom is `root`. The BFS runs in the subgraph of atoms >= root: a ring through root
 // with only larger atoms has its two half-paths inside that subgraph and they are shortest there too.
-void rings_at(const AtomGraph& g, int root, int max_size, std::size_t cap, Scratch& s,
-              std::vector<std::vector<int>>& out, std::size_t& candidates, std::size_t& truncated) {
+void rings_at(const AtomGraph& g, int root, const SpRingSettings& settings, Scratch& s,
+              std::vector<std::vector<int>>& out, std::size_t& candidates, std::size_t& truncated,
+              std::size_t& truncated_atoms) {
+  const int max_size = settings.max_size;
+  const std::size_t cap = settings.max_paths_per_end;
+  std::size_t tested = 0;
+  bool over = false;
   const int depth = max_size / 2;
   ++s.current;
   s.queue.clear();
@@ -157,13 +162,17 @@ void rings_at(const AtomGraph& g, int root, int max_size, std::size_t cap, Scrat
 
   std::vector<std::vector<int>> pa, pb;
   auto try_ring = [&](std::vector<int> ring) {
+    if (++tested > settings.max_candidates_per_atom) {
+      over = true;
+      return;
+    }
     ++candidates;
     if (is_sp_ring(g, ring, s)) {
       canonical(ring);
       found.push_back(std::move(ring));
     }
   };
-  for (std::size_t q = 1; q < s.queue.size(); ++q) {
+  for (std::size_t q = 1; q < s.queue.size() && !over; ++q) {
     const int v = s.queue[q];
     const int dv = s.dist[v];
     const int ord = static_cast<int>(q);
@@ -205,6 +214,7 @@ void rings_at(const AtomGraph& g, int root, int max_size, std::size_t cap, Scrat
       }
     }
   }
+  if (over) ++truncated_atoms;
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
   for (auto& r : found) out.push_back(std::move(r));
@@ -220,7 +230,7 @@ SpRingResult find_sp_rings(const AtomGraph& graph, const SpRingSettings& setting
   constexpr long kBlock = 2048;
   const long blocks = (n + kBlock - 1) / kBlock;
   std::vector<std::vector<std::vector<int>>> per_block(blocks);
-  std::vector<std::size_t> cand(blocks, 0), trunc(blocks, 0);
+  std::vector<std::size_t> cand(blocks, 0), trunc(blocks, 0), trunc_atoms(blocks, 0);
 #pragma omp parallel
   {
     Scratch scratch(graph.atoms());
@@ -228,14 +238,14 @@ SpRingResult find_sp_rings(const AtomGraph& graph, const SpRingSettings& setting
     for (long b = 0; b < blocks; ++b) {
       const long end = std::min(n, (b + 1) * kBlock);
       for (long i = b * kBlock; i < end; ++i)
-        rings_at(graph, static_cast<int>(i), settings.max_size, settings.max_paths_per_end, scratch, per_block[b],
-                 cand[b], trunc[b]);
+        rings_at(graph, static_cast<int>(i), settings, scratch, per_block[b], cand[b], trunc[b], trunc_atoms[b]);
     }
   }
   for (long b = 0; b < blocks; ++b) {
     for (auto& r : per_block[b]) result.rings.push_back(std::move(r));
     result.candidates += cand[b];
     result.truncated_ends += trunc[b];
+    result.truncated_atoms += trunc_atoms[b];
   }
   return result;
 }

@@ -26,14 +26,14 @@ Plane parse_plane(const std::string& text, const Vec3& center);
 TriMesh mirror_mesh(const TriMesh& mesh, const Plane& plane);
 
 struct MirrorSettings {
-  std::size_t search_samples = 3000;    // Hausdorff samples a side while refining
-  std::size_t final_samples = 100000;   // Hausdorff samples a side for the reported residual
-  int evaluations_per_candidate = 60;   // pattern-search budget per PCA candidate
+  std::size_t search_samples = 5000;    // surface samples while refining (reflected, against one AABB tree)
+  std::size_t final_samples = 100000;   // Hausdorff samples a side for the reported residual (hausdorff_distance)
+  int evaluations_per_candidate = 150;  // pattern-search budget per PCA candidate
 };
 
 struct MirrorCandidate {
   Plane start, refined;
-  double start_distance = 0, refined_distance = 0;  // search-sample Hausdorff max
+  double start_distance = 0, refined_distance = 0;  // search objective: max over samples p of d(mirror(p), shape)
   int evaluations = 0;
 };
 
