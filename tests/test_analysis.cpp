@@ -411,6 +411,39 @@ TEST(LammpsAtoms, ReadsAtomicAndFullAndFindsTheRingsOfAnIcosphereDual) {
   write_data(dir / "build" / "structure.data", atoms, false);
   EXPECT_EQ(resolve_input(dir / "build").kind, "lammps data");
   EXPECT_EQ(analyze(dir / "build").sizes.closed.at(5), 12u);
+  // Hydrogen (type 2, mass 1.008) 1.09 A outside ten atoms: left out of the rings and the coordination.
+  {
+    std::ofstream out(dir / "ch.data");
+    out << "C and H\n\n" << atoms.size() + 10 << " atoms\n2 atom types\n-50 50 xlo xhi\n-50 50 ylo yhi\n"
+        << "-50 50 zlo zhi\n\nMasses\n\n1 12.011\n2 1.008\n\nAtoms # atomic\n\n";
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+      out << i + 1 << " 1 " << atoms[i][0] << " " << atoms[i][1] << " " << atoms[i][2] << "\n";
+    for (std::size_t i = 0; i < 10; ++i) {
+      const Vec3 h = atoms[i] + atoms[i].normalized() * 1.09;
+      out << atoms.size() + i + 1 << " 2 " << h[0] << " " << h[1] << " " << h[2] << "\n";
+    }
+  }
+  const Analysis ch = analyze(dir / "ch.data");
+  EXPECT_EQ(ch.structure.atoms.atoms(), atoms.size());
+  EXPECT_EQ(ch.coordination.size(), 1u);
+  EXPECT_EQ(ch.sizes.closed.at(5), 12u);
+  // A folder with rings.ply (what `carbonmesh build` writes) is read through its polygons.
+  {
+    std::ofstream ply(dir / "build" / "rings.ply");
+    ply << "ply\nformat ascii 1.0\nelement vertex " << atoms.size() << "\nproperty double x\nproperty double y\n"
+        << "property double z\nelement face " << mesh_rings.rings.size() << "\nproperty list uchar int vertex_indices\n"
+        << "end_header\n";
+    for (const auto& p : atoms) ply << p[0] << " " << p[1] << " " << p[2] << "\n";
+    for (const auto& r : mesh_rings.rings) {
+      ply << r.size();
+      for (int v : r) ply << " " << v;
+      ply << "\n";
+    }
+  }
+  EXPECT_EQ(resolve_input(dir / "build").kind, "polygon mesh");
+  const Analysis folder = analyze(dir / "build");
+  EXPECT_EQ(folder.sizes.closed.at(5), 12u);
+  EXPECT_EQ(folder.sizes.closed.at(6), 150u);
   fs::remove_all(dir);
 }
 

@@ -83,17 +83,22 @@ ResolvedInput resolve_input(const fs::path& input) {
       const auto name = entry.path().filename().string();
       if (name.find(".partial-") != std::string::npos) continue;
       if (lower_ext(entry.path()) == ".data") data.push_back(entry.path());
-      if (lower_ext(entry.path()) == ".ply" && name.find("dual") != std::string::npos) dual.push_back(entry.path());
+      if (lower_ext(entry.path()) == ".ply" && (name == "rings.ply" || name.find("dual") != std::string::npos))
+        dual.push_back(entry.path());
     }
     std::sort(data.begin(), data.end());
-    std::sort(dual.begin(), dual.end());
+    // `carbonmesh build` writes rings.ply (the dual: one polygon per ring) next to structure.data.
+    std::sort(dual.begin(), dual.end(), [](const fs::path& a, const fs::path& b) {
+      const bool ra = a.filename() == "rings.ply", rb = b.filename() == "rings.ply";
+      return ra != rb ? ra : a < b;
+    });
     if (!dual.empty()) {
       r.kind = "polygon mesh";
       r.file = dual.front();
       return r;
     }
     if (data.empty())
-      throw InputError(input.string() + ": folder has no LAMMPS data file (*.data) and no dual PLY (*dual*.ply)");
+      throw InputError(input.string() + ": folder has no rings.ply or *dual*.ply and no LAMMPS data file (*.data)");
     auto structure = std::find_if(data.begin(), data.end(), [](const fs::path& p) { return p.filename() == "structure.data"; });
     if (structure == data.end() && data.size() > 1)
       throw InputError(fmt::format("{}: folder has {} data files and none is structure.data; name one", input.string(),
@@ -114,6 +119,23 @@ RingStructure load_ring_structure(const ResolvedInput& in, const AnalysisSetting
     Timer t;
     LammpsAtoms data = read_lammps_atoms(in.file);
     spdlog::info("{}: {} atoms (style {})", in.file.string(), data.positions.size(), data.atom_style);
+    // Hydrogen (passivated borders; mass below 1.5) takes no part in rings: drop it.
+    std::size_t hydrogen = 0;
+    if (!settings.data_bonds) {
+      std::vector<Vec3> carbon;
+      carbon.reserve(data.positions.size());
+      for (std::size_t i = 0; i < data.positions.size(); ++i) {
+        const double mass = data.masses[data.types[i] - 1];
+        if (mass > 0 && mass < 1.5)
+          ++hydrogen;
+        else
+          carbon.push_back(data.positions[i]);
+      }
+      if (hydrogen) {
+        spdlog::info("{} hydrogen atoms (mass < 1.5) left out of the ring analysis", hydrogen);
+        data.positions = std::move(carbon);
+      }
+    }
     std::vector<Bond> bonds;
     if (settings.data_bonds) {
       if (data.bonds.empty()) throw InputError(in.file.string() + ": --data-bonds given but the file has no Bonds");
