@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/LU>
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
 
@@ -12,6 +13,7 @@ namespace carbonmesh {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr int kDenseLimit = 40;  // unknowns up to which the Floater system is solved with a dense LU
 
 double angle_between(const Vec3& u, const Vec3& v) {
   const double lu = u.norm(), lv = v.norm();
@@ -137,7 +139,8 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
     return f.is_valid() && s.face_mark[static_cast<std::size_t>(f.idx())] == s.stamp;
   };
   // Region border: half-edges of star faces whose opposite face is outside the star.
-  std::vector<int> next_on_border(n, -1);
+  thread_local std::vector<int> next_on_border;
+  next_on_border.assign(n, -1);
   std::size_t border_edges = 0;
   for (auto f : star.faces) {
     for (auto h : mesh.fh_range(f)) {
@@ -157,7 +160,8 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
   int first = -1;
   for (std::size_t i = 0; i < n && first < 0; ++i)
     if (next_on_border[i] >= 0) first = static_cast<int>(i);
-  std::vector<int> loop;
+  thread_local std::vector<int> loop;
+  loop.clear();
   for (int i = first; loop.size() <= border_edges;) {
     loop.push_back(i);
     i = next_on_border[static_cast<std::size_t>(i)];
@@ -168,7 +172,8 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
 
   // Border onto a circle whose circumference is the border length, arc lengths kept.
   uv.assign(n, Eigen::Vector2d::Zero());
-  std::vector<double> arc(loop.size() + 1, 0.0);
+  thread_local std::vector<double> arc;
+  arc.assign(loop.size() + 1, 0.0);
   for (std::size_t i = 0; i < loop.size(); ++i) {
     const auto a = star.vertices[static_cast<std::size_t>(loop[i])];
     const auto b = star.vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
@@ -183,15 +188,17 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
   }
 
   // Interior vertices: U_i - sum_k lambda_ik U_k = sum_j lambda_ij U_j (Eq 3.3).
-  std::vector<int> unknown(n, -1);
+  thread_local std::vector<int> unknown;
+  unknown.assign(n, -1);
   int count = 0;
   for (std::size_t i = 0; i < n; ++i)
     if (next_on_border[i] < 0) unknown[i] = count++;
-  std::vector<Eigen::Triplet<double>> triplets;
+  thread_local std::vector<Eigen::Triplet<double>> triplets;
+  triplets.clear();
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(count, 2);
-  std::vector<Vec3> ring;
-  std::vector<int> ring_local;
-  std::vector<double> lambda;
+  thread_local std::vector<Vec3> ring;
+  thread_local std::vector<int> ring_local;
+  thread_local std::vector<double> lambda;
   for (std::size_t i = 0; i < n; ++i) {
     if (unknown[i] < 0) continue;
     const auto v = star.vertices[i];
@@ -221,13 +228,23 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
         rhs.row(row) += lambda[j] * uv[static_cast<std::size_t>(ring_local[j])].transpose();
     }
   }
-  Eigen::SparseMatrix<double> a(count, count);
-  a.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> solver;
-  solver.compute(a);
-  if (solver.info() != Eigen::Success) return false;
-  const Eigen::MatrixX2d x = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !x.allFinite()) return false;
+  Eigen::MatrixX2d x;
+  if (count <= kDenseLimit) {
+    // Small stars (kl <= 2): profiling showed SparseLU's symbolic analysis and allocations dominating the
+    // whole filter, so the same system is solved densely.
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(count, count);
+    for (const auto& t : triplets) a(t.row(), t.col()) += t.value();
+    x = a.partialPivLu().solve(rhs);
+  } else {
+    Eigen::SparseMatrix<double> a(count, count);
+    a.setFromTriplets(triplets.begin(), triplets.end());
+    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> solver;
+    solver.compute(a);
+    if (solver.info() != Eigen::Success) return false;
+    x = solver.solve(rhs);
+    if (solver.info() != Eigen::Success) return false;
+  }
+  if (!x.allFinite()) return false;
   for (std::size_t i = 0; i < n; ++i)
     if (unknown[i] >= 0) uv[i] = x.row(unknown[i]).transpose();
   return true;

@@ -65,7 +65,7 @@ Vec3 position_from_parameter(const TriMesh& mesh, const KStar& star, const StarS
 
 Vec3 low_pass_position(const TriMesh& mesh, TriMesh::VertexHandle v, int kl, ParametrizationWeights weights,
                        StarScratch& scratch) {
-  KStar star;
+  thread_local KStar star;  // reused buffers
   collect_k_star(mesh, v, kl, star, scratch);
   // Eq 4.4: kl_i = min Star(V_j) over the border vertices V_j of the kl-star.
   int kli = kl;
@@ -73,7 +73,7 @@ Vec3 low_pass_position(const TriMesh& mesh, TriMesh::VertexHandle v, int kl, Par
     if (mesh.is_boundary(star.vertices[j])) kli = std::min(kli, star.ring[j]);
   if (kli <= 0) return mesh.point(v);
   if (kli < kl) collect_k_star(mesh, v, kli, star, scratch);
-  std::vector<Eigen::Vector2d> uv;
+  thread_local std::vector<Eigen::Vector2d> uv;
   if (!compute_parametrization(mesh, star, weights, scratch, uv)) return tangential_laplacian(mesh, star);
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
   double fat = 0;

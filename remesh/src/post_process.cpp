@@ -6,18 +6,29 @@ namespace carbonmesh {
 
 int post_process(TriMesh& mesh, int kn, double emin, double emax) {
   const EdgeInterval interval{emin, emax};
-  auto troubling = [&](const TriMesh& m) {
-    const EdgeStats s = edge_stats(m, interval);
+  const double m = 0.5 * (emin + emax);
+  auto troubling = [&](const TriMesh& mm) {
+    const EdgeStats s = edge_stats(mm, interval);
     return s.long_edges + s.short_edges;
   };
   std::size_t best = troubling(mesh);
   TriMesh saved = mesh;
   int rounds = 0;
-  // While the number of long and short edges decreases (and some are left).
+  // While the number of long and short edges decreases (and some are left). When the optimizer alone
+  // stops improving, one round with the stellar operations on [emin, emax] first is tried (kept only if
+  // it improves).
   while (best > 0 && rounds < 1000) {
     nonlinear_optimizer(mesh, kn, emin, emax);
-    const std::size_t now = troubling(mesh);
-    if (now >= best) break;
+    std::size_t now = troubling(mesh);
+    if (now >= best) {
+      mesh = saved;
+      stellar_operations(mesh, emin, emax, m);
+      mesh.garbage_collection();
+      correct_valence(mesh, m, &interval);
+      nonlinear_optimizer(mesh, kn, emin, emax);
+      now = troubling(mesh);
+      if (now >= best) break;
+    }
     best = now;
     saved = mesh;
     ++rounds;

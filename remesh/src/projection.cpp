@@ -105,7 +105,8 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   const Impl& t = *impl_;
   const Distance distance(t.map);
   const Search search(*t.tree, Point(v[0], v[1], v[2]), static_cast<unsigned>(k), 0, true, distance);
-  std::vector<int> candidates;
+  thread_local std::vector<int> candidates;
+  candidates.clear();
   for (auto it = search.begin(); it != search.end(); ++it) {
     const std::size_t i = it->first;
     for (int j = t.vertex_face_begin[i]; j < t.vertex_face_begin[i + 1]; ++j)
@@ -118,8 +119,8 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
     int face;
     Vec3 point;
   };
-  std::vector<Candidate> projections;
-  projections.reserve(candidates.size());
+  thread_local std::vector<Candidate> projections;
+  projections.clear();
   for (int f : candidates) {
     const auto& tri = t.faces[static_cast<std::size_t>(f)];
     const Vec3 p = closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
@@ -130,7 +131,8 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   std::sort(projections.begin(), projections.end(), [](const Candidate& a, const Candidate& b) {
     return a.distance != b.distance ? a.distance < b.distance : a.face < b.face;
   });
-  std::vector<double> neighbor_lengths(neighbors.size());
+  thread_local std::vector<double> neighbor_lengths;
+  neighbor_lengths.resize(neighbors.size());
   for (std::size_t j = 0; j < neighbors.size(); ++j) neighbor_lengths[j] = (v - neighbors[j]).norm();
   Vec3 best = v;
   double best_score = std::numeric_limits<double>::infinity();

@@ -34,6 +34,8 @@ struct BestMesh {
   }
 };
 
+constexpr int kStallIterations = 5;
+
 // CalcEdgesPercent of Algorithm 1: long+short edges as a percentage of all edges.
 double troubling_percent(const EdgeStats& e) {
   return e.count == 0 ? 0.0 : 100.0 * static_cast<double>(e.long_edges + e.short_edges) / static_cast<double>(e.count);
@@ -57,7 +59,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   BestMesh best{mesh, edges.long_edges + edges.short_edges, valence_stats(mesh).percent_regular};
 
   int iteration = 0;
-  std::size_t troubling_before = std::numeric_limits<std::size_t>::max();
+  std::size_t lowest = std::numeric_limits<std::size_t>::max();
+  int stalled = 0;
   while (edges.long_edges + edges.short_edges > 0 && iteration < s.iterations) {
     if (s.p > 0 && iteration > 0 && iteration % s.p == 0) {
       target = std::make_unique<TriMesh>(mesh);
@@ -66,10 +69,21 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // Few long and short edges left (the nonlinear phase): splitting an edge just above emax or collapsing
     // one just below emin only trades it for new short or long ones when emax < 2 emin, so edges within a
     // quarter interval width outside are left to the nonlinear optimizer, and flips keep edges inside.
-    // When that phase stalls (no fewer long+short edges than before), the full stellar step runs again.
+    // When the count of long+short edges has not reached a new low for kStallIterations, one full stellar
+    // step runs again (and the count starts over).
     const std::size_t troubling_now = edges.long_edges + edges.short_edges;
-    const bool nonlinear_phase = troubling_percent(edges) <= s.l && troubling_now < troubling_before;
-    troubling_before = troubling_now;
+    if (troubling_now < lowest) {
+      lowest = troubling_now;
+      stalled = 0;
+    } else {
+      ++stalled;
+    }
+    const bool kick = stalled >= kStallIterations;
+    if (kick) {
+      lowest = std::numeric_limits<std::size_t>::max();
+      stalled = 0;
+    }
+    const bool nonlinear_phase = troubling_percent(edges) <= s.l && !kick;
     IntermediateInterval step = intermediate_interval(edges.mean, s.emin, s.emax);
     if (nonlinear_phase) step = {s.emin - 0.25 * (s.emax - s.emin), s.emax + 0.25 * (s.emax - s.emin)};
     const StellarResult stellar = stellar_operations(mesh, step.emin, step.emax, m);
