@@ -38,14 +38,17 @@ SurfaceProjector::SurfaceProjector(const TriMesh& surface) : impl_(std::make_uni
 SurfaceProjector::~SurfaceProjector() = default;
 
 void SurfaceProjector::closest_points(const std::vector<Vec3>& points, std::vector<Vec3>& closest) const {
+  const bool hints = closest.size() == points.size();
   closest.resize(points.size());
   const Tree& tree = impl_->tree;
   const long n = static_cast<long>(points.size());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const Vec3& p = points[static_cast<std::size_t>(i)];
-    const Point q = tree.closest_point(Point(p[0], p[1], p[2]));
-    closest[static_cast<std::size_t>(i)] = Vec3(q.x(), q.y(), q.z());
+    Vec3& c = closest[static_cast<std::size_t>(i)];
+    const Point q = hints ? tree.closest_point(Point(p[0], p[1], p[2]), Point(c[0], c[1], c[2]))
+                          : tree.closest_point(Point(p[0], p[1], p[2]));
+    c = Vec3(q.x(), q.y(), q.z());
   }
 }
 

@@ -14,7 +14,8 @@ class SurfaceProjector {
   SurfaceProjector(const SurfaceProjector&) = delete;
   SurfaceProjector& operator=(const SurfaceProjector&) = delete;
 
-  // closest[i] = the point of the surface nearest to points[i] (OpenMP over points; deterministic).
+  // closest[i] = the point of the surface nearest to points[i] (OpenMP over points; deterministic). If `closest`
+  // already holds one point per query, those points are used as search hints (the answer is the same).
   void closest_points(const std::vector<Vec3>& points, std::vector<Vec3>& closest) const;
 
  private:
