@@ -156,7 +156,15 @@ INSTANTIATE_TEST_SUITE_P(
                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n",
                  "truncated"},
-        BadInput{"garbage.stl", std::string(7, '\x7f'), "cannot be parsed as stl"}),
+        BadInput{"garbage.stl", std::string(7, '\x7f'), "cannot be parsed as stl"},
+        // Fuzzing findings, kept as regressions: huge announced counts in a tiny file (was: out of memory),
+        // a PLY vertex index beyond int (was: undefined behaviour).
+        BadInput{"huge_counts.off", "OFF\n100000000 100000000 0\n0 0 0\n", "truncated"},
+        BadInput{"huge_index.ply",
+                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                 "0 0 0\n1 0 0\n0 1 0\n3 0 1 1e12\n",
+                 "invalid vertex index"}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '.', '_');

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -69,11 +70,15 @@ class PlyReader {
             scalars[k] = value(p.type, element.name, i);
           } else {
             const double n = value(p.count_type, element.name, i);
-            if (n < 0 || n > 1000) fail(element.name + " " + std::to_string(i) + " has a list of " + std::to_string(n) + " items");
+            if (!(n >= 0 && n <= 1000)) fail(element.name + " " + std::to_string(i) + " has a list of " + std::to_string(n) + " items");
             list.assign(static_cast<std::size_t>(n), 0.0);
             for (auto& item : list) item = value(p.type, element.name, i);
             if (static_cast<int>(k) == iface)
-              for (double index : list) polygon.push_back(static_cast<int>(index));
+              for (double index : list) {
+                if (!(index >= 0 && index < static_cast<double>(kMaxElements)) || index != std::floor(index))
+                  fail(element.name + " " + std::to_string(i) + " has the invalid vertex index " + std::to_string(index));
+                polygon.push_back(static_cast<int>(index));
+              }
           }
         }
         if (is_vertex) soup.points.emplace_back(scalars[static_cast<std::size_t>(ix)], scalars[static_cast<std::size_t>(iy)],

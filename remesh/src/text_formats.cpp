@@ -1,5 +1,6 @@
 #include "text_formats.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <fstream>
@@ -87,8 +88,10 @@ PolygonSoup read_off(const std::filesystem::path& file) {
   if (nv < 0 || nf < 0 || nv > kMaxElements || nf > kMaxElements)
     reader.fail("implausible counts " + std::to_string(nv) + " vertices, " + std::to_string(nf) + " faces");
   PolygonSoup soup;
-  soup.points.reserve(static_cast<std::size_t>(nv));
-  soup.polygons.reserve(static_cast<std::size_t>(nf));
+  // A vertex or face line takes at least 6 bytes: never reserve more than the file could hold.
+  const auto plausible = static_cast<long>(std::filesystem::file_size(file) / 6 + 1);
+  soup.points.reserve(static_cast<std::size_t>(std::min(nv, plausible)));
+  soup.polygons.reserve(static_cast<std::size_t>(std::min(nf, plausible)));
   for (long i = 0; i < nv; ++i) {
     if (!reader.next(t))
       reader.fail("truncated: expected " + std::to_string(nv) + " vertices, found " + std::to_string(i));
