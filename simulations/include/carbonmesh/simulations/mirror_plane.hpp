@@ -26,9 +26,9 @@ Plane parse_plane(const std::string& text, const Vec3& center);
 TriMesh mirror_mesh(const TriMesh& mesh, const Plane& plane);
 
 struct MirrorSettings {
-  std::size_t search_samples = 5000;    // surface samples while refining (reflected, against one AABB tree)
+  std::size_t search_samples = 1500;    // surface samples while refining (reflected, against one AABB tree)
   std::size_t final_samples = 100000;   // Hausdorff samples a side for the reported residual (hausdorff_distance)
-  int evaluations_per_candidate = 150;  // pattern-search budget per PCA candidate
+  int evaluations_per_candidate = 100;  // pattern-search budget per PCA candidate
 };
 
 struct MirrorCandidate {
