@@ -11,6 +11,7 @@ using Action = std::function<int()>;
 void add_stats_command(CLI::App& app, Action& action);
 void add_shape_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
+void add_build_command(CLI::App& app, Action& action);
 void add_remesh_command(CLI::App& app, Action& action);
 
 }  // namespace carbonmesh::cli

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   carbonmesh::cli::add_stats_command(app, action);
   carbonmesh::cli::add_shape_command(app, action);
   carbonmesh::cli::add_analyze_command(app, action);
+  carbonmesh::cli::add_build_command(app, action);
   carbonmesh::cli::add_remesh_command(app, action);
 
   try {

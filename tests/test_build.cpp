@@ -1,0 +1,119 @@
+// `carbonmesh build` end to end: surface -> remesh -> dual -> optimise -> files and summary.json, and the
+// written deck run by the Debian lmp.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "carbonmesh/carbon/lammps_data.hpp"
+#include "carbonmesh/carbon/lammps_dump.hpp"
+#include "carbonmesh/remesh/io.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+#include "test_paths.hpp"
+
+using namespace carbonmesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("carbonmesh_test_build_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+int run(const std::string& arguments) {
+  const std::string command = std::string(CARBONMESH_CLI) + " -q " + arguments + " > /dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+nlohmann::json read_json(const fs::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST(BuildCommand, DefaultSphereGivesClosedFullerene) {
+  const fs::path dir = temp_dir("sphere");
+  ASSERT_EQ(run("build -o " + (dir / "out").string() + " --atoms 300 --steps 100"), 0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  for (const char* f : {"structure.data", "in.rebo", "structure.xyz", "structure.pdb", "rings.ply", "remeshed.off"})
+    EXPECT_TRUE(fs::is_regular_file(dir / "out" / f)) << f;
+  const std::size_t atoms = s["atoms"];
+  EXPECT_GT(atoms, 200u);
+  EXPECT_LT(atoms, 400u);
+  EXPECT_EQ(s["hydrogen_atoms"], 0);
+  EXPECT_EQ(s["bonds"].get<std::size_t>() * 2, 3 * atoms);  // closed: every atom has three bonds
+  EXPECT_DOUBLE_EQ(s["percent_three_bonds"].get<double>(), 100.0);
+  EXPECT_EQ(s["genus"], 0);
+  EXPECT_EQ(s["borders"], 0);
+  // Euler for a closed genus-0 sp2 net: sum over ring sizes of (6 - n) = 12.
+  long defect = 0;
+  for (const auto& [size, count] : s["rings_by_size"].items()) defect += (6 - std::stol(size)) * count.get<long>();
+  EXPECT_EQ(defect, 12);
+  EXPECT_LT(s["optimization"]["bonds_after"]["std"].get<double>(), s["optimization"]["bonds_before"]["std"].get<double>());
+  for (const char* stage : {"load", "scale", "remesh", "dual", "optimize", "write", "total"})
+    EXPECT_TRUE(s["seconds"].contains(stage)) << stage;
+  EXPECT_TRUE(s["remesh"].contains("iterations"));
+  EXPECT_EQ(read_lammps_data(dir / "out" / "structure.data").positions.size(), atoms);
+
+  if (std::system("command -v lmp > /dev/null 2>&1") != 0) {
+    fs::remove_all(dir);
+    GTEST_SKIP() << "lmp is not on PATH (Debian package lammps): the deck run is skipped";
+  }
+  const std::string lmp = "cd '" + (dir / "out").string() + "' && lmp -in in.rebo -log log.lammps -screen none";
+  ASSERT_EQ(std::system(lmp.c_str()), 0);
+  const DumpFrame f = read_last_dump_frame(dir / "out" / "dump.rebo.lammpstrj");
+  EXPECT_EQ(f.timestep, 100);
+  ASSERT_EQ(f.positions.size(), atoms);
+  for (std::size_t i = 0; i < atoms; ++i) {
+    int n = 0;
+    for (std::size_t j = 0; j < atoms; ++j)
+      if (j != i && (f.positions[i] - f.positions[j]).norm() < 1.85) ++n;
+    EXPECT_EQ(n, 3) << "atom " << i + 1;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(BuildCommand, OpenCapIsPassivatedWithTopology) {
+  const fs::path dir = temp_dir("cap");
+  TriMesh mesh = make_icosphere({10.0, 3});
+  for (auto f : mesh.faces()) {
+    Vec3 c(0, 0, 0);
+    for (auto v : mesh.fv_range(f)) c += mesh.point(v);
+    if (c[2] < 0) mesh.delete_face(f, true);
+  }
+  mesh.garbage_collection();
+  save_mesh(mesh, dir / "cap.off");
+  ASSERT_EQ(run("build " + (dir / "cap.off").string() + " -o " + (dir / "out").string() +
+                " --passivate --topology --steps 100"),
+            0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  EXPECT_EQ(s["borders"], 1);
+  EXPECT_GT(s["hydrogen_atoms"].get<int>(), 0);
+  EXPECT_EQ(s["hydrogen_atoms"], s["passivation"]["hydrogens"]);
+  EXPECT_GT(s["dual"]["open_rings"].get<int>(), 0);
+  const LammpsData d = read_lammps_data(dir / "out" / "structure.data");
+  EXPECT_EQ(d.atom_style, "full");
+  EXPECT_EQ(d.atom_types, 2);
+  EXPECT_EQ(d.bonds.size(), s["bonds"].get<std::size_t>());
+  fs::remove_all(dir);
+}
+
+TEST(BuildCommand, BadInputExitsWithTwo) {
+  const fs::path dir = temp_dir("bad");
+  EXPECT_EQ(run("build -o " + (dir / "a").string() + " --atoms -5"), 2);
+  EXPECT_EQ(run("build -o " + (dir / "b").string() + " --size 10 --scale 2"), 2);
+  EXPECT_EQ(run("build " + (dir / "missing.off").string() + " -o " + (dir / "c").string()), 2);
+  EXPECT_EQ(run("build -o " + (dir / "d").string() + " --emin 3 --emax 2"), 2);
+  EXPECT_FALSE(fs::exists(dir / "a" / "summary.json"));
+  fs::remove_all(dir);
+}

@@ -1,0 +1,230 @@
+// `carbonmesh build [IN] -o DIR [--bond 1.42] [--size L | --scale s | --atoms N] [--emin A --emax B]
+//  [remesh options] [--passivate] [--topology]`: load, scale, remesh, dual, optimise, write LAMMPS/REBO2 input.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "carbonmesh/carbon/output_files.hpp"
+#include "carbonmesh/carbon/passivate.hpp"
+#include "carbonmesh/carbon/structure.hpp"
+#include "carbonmesh/carbon/structure_scale.hpp"
+#include "carbonmesh/dual/dual_mesh.hpp"
+#include "carbonmesh/dual/optimize.hpp"
+#include "carbonmesh/remesh/atomic_file.hpp"
+#include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/io.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/remesher.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+#include "commands.hpp"
+
+namespace carbonmesh::cli {
+namespace {
+
+struct BuildOptions {
+  std::string in, out;
+  double bond = 1.42;
+  std::optional<double> size, scale, atoms, emin, emax;
+  RemeshSettings remesh;
+  DualOptimizeSettings optimize;
+  bool passivate = false, topology = false, repair = false;
+  long steps = 10000;
+  double temperature = 300.0;
+  int np = 4;
+};
+
+// Wall-clock seconds per stage, in order.
+class StageClock {
+ public:
+  void stop(const std::string& stage) {
+    const auto now = std::chrono::steady_clock::now();
+    seconds_[stage] = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+  nlohmann::json to_json() const {
+    nlohmann::json j = nlohmann::json::object();
+    double total = 0;
+    for (const auto& [stage, s] : seconds_) j[stage] = s, total += s;
+    j["total"] = total;
+    return j;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::map<std::string, double> seconds_;
+};
+
+int run_build(BuildOptions& o) {
+  StageClock clock;
+  // Load (validated) or the built-in icosphere.
+  TriMesh mesh;
+  std::string source;
+  if (o.in.empty()) {
+    mesh = make_icosphere(SphereShape{});
+    source = fmt::format("built-in sphere (icosphere radius {}, {} subdivisions)", SphereShape{}.radius,
+                         SphereShape{}.subdivisions);
+  } else {
+    LoadSettings load;
+    load.repair = o.repair;
+    mesh = load_mesh(o.in, load);
+    source = o.in;
+  }
+  const Topology input_topology = topology(mesh);
+  clock.stop("load");
+
+  // Scale.
+  ScaleSettings scale;
+  scale.bond = o.bond;
+  if (o.size) scale.mode = ScaleMode::Size, scale.value = *o.size;
+  if (o.scale) scale.mode = ScaleMode::Factor, scale.value = *o.scale;
+  if (o.atoms) scale.mode = ScaleMode::Atoms, scale.value = *o.atoms;
+  StructureScale scaled = structure_scale(mesh, scale);
+  if (o.emin) scaled.emin = *o.emin;
+  if (o.emax) scaled.emax = *o.emax;
+  if (!(scaled.emin > 0) || !(scaled.emin < scaled.emax))
+    throw InputError(fmt::format("edge interval [{}, {}] must satisfy 0 < emin < emax", scaled.emin, scaled.emax));
+  scale_mesh(mesh, scaled.factor);
+  spdlog::info("{}: scaled by {:.6g} to area {:.1f} A^2 (about {:.0f} atoms), edges in [{:.4f}, {:.4f}] A", source,
+               scaled.factor, scaled.area, scaled.expected_atoms, scaled.emin, scaled.emax);
+  const TriMesh surface = mesh;  // the surface the atoms stay on
+  clock.stop("scale");
+
+  // Remesh.
+  o.remesh.emin = scaled.emin;
+  o.remesh.emax = scaled.emax;
+  o.remesh.on_iteration = [](const IterationLog& l) {
+    spdlog::info("remesh iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  {:.2f}s{}",
+                 l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.seconds,
+                 l.nonlinear ? "  (nonlinear)" : "");
+  };
+  const RemeshResult remeshed = remesh(mesh, o.remesh);
+  mesh.garbage_collection();
+  const MeshStats remeshed_stats = mesh_stats(mesh, EdgeInterval{scaled.emin, scaled.emax});
+  clock.stop("remesh");
+
+  // Dual and its optimisation.
+  Dual dual = build_dual(mesh);
+  clock.stop("dual");
+  o.optimize.bond = o.bond;
+  const DualOptimizeResult optimized = optimize_dual(dual, surface, o.optimize);
+  clock.stop("optimize");
+
+  // Carbon structure and files.
+  CarbonStructure structure = carbon_structure(dual);
+  std::optional<PassivationResult> passivation;
+  if (o.passivate) passivation = passivate(structure);
+  clock.stop("passivate");
+  OutputSettings output;
+  output.data.topology = o.topology;
+  output.deck.steps = o.steps;
+  output.deck.temperature = o.temperature;
+  output.deck.mpi_ranks = o.np;
+  const std::filesystem::path dir(o.out);
+  const OutputFiles files = write_structure_files(dir, structure, dual.mesh, output);
+  save_mesh(mesh, dir / "remeshed.off");
+  clock.stop("write");
+
+  nlohmann::json summary;
+  summary["input"] = source;
+  summary["bond"] = o.bond;
+  summary["scale"] = to_json(scaled);
+  summary["input_topology"] = to_json(input_topology);
+  summary["genus"] = remeshed.after.genus;
+  summary["borders"] = remeshed.after.boundary_loops;
+  summary["remesh"] = to_json(remeshed);
+  summary["remesh"].erase("log");
+  summary["remeshed_mesh"] = to_json(remeshed_stats);
+  summary["dual"] = to_json(dual.counts);
+  summary["atoms"] = structure.atoms();
+  summary["carbon_atoms"] = structure.count(Element::C);
+  summary["hydrogen_atoms"] = structure.count(Element::H);
+  summary["bonds"] = structure.bonds.size();
+  summary["rings_by_size"] = to_json(dual.counts)["rings_by_size"];
+  summary["percent_three_bonds"] = dual.counts.percent_three_bonds;
+  summary["optimization"] = to_json(optimized);
+  if (passivation) summary["passivation"] = to_json(*passivation);
+  summary["files"] = to_json(files);
+  summary["files"]["remeshed_mesh"] = (dir / "remeshed.off").string();
+  summary["files"]["summary"] = (dir / "summary.json").string();
+  summary["seconds"] = clock.to_json();
+  write_atomically(dir / "summary.json", [&summary](const std::filesystem::path& tmp) {
+    std::ofstream file(tmp);
+    file << summary.dump(2) << "\n";
+    if (!file) throw std::runtime_error("cannot write " + tmp.string());
+  });
+
+  std::string rings;
+  for (const auto& [size, n] : dual.counts.ring_sizes) rings += fmt::format(" {}:{}", size, n);
+  std::cout << fmt::format(
+      "{} -> {}\n"
+      "remesh: long {} short {} regular {:.2f}% iterations {} genus {} borders {}\n"
+      "atoms {} ({} C, {} H)  bonds {}  rings{}  open rings {}  three-bonded {:.2f}%\n"
+      "bonds before  min {:.4f} mean {:.4f} std {:.4f} max {:.4f}  angles {:.2f}..{:.2f} (mean {:.2f})\n"
+      "bonds after   min {:.4f} mean {:.4f} std {:.4f} max {:.4f}  angles {:.2f}..{:.2f} (mean {:.2f})\n"
+      "run: cd {} && lmp -in in.rebo   (or mpirun -np {} lmp -in in.rebo)\n",
+      source, dir.string(), remeshed.long_edges, remeshed.short_edges, remeshed.percent_regular, remeshed.iterations,
+      remeshed.after.genus, remeshed.after.boundary_loops, structure.atoms(), structure.count(Element::C),
+      structure.count(Element::H), structure.bonds.size(), rings, dual.counts.open_rings,
+      dual.counts.percent_three_bonds, optimized.bonds_before.min, optimized.bonds_before.mean,
+      optimized.bonds_before.std, optimized.bonds_before.max, optimized.angles_before.min,
+      optimized.angles_before.max, optimized.angles_before.mean, optimized.bonds_after.min,
+      optimized.bonds_after.mean, optimized.bonds_after.std, optimized.bonds_after.max, optimized.angles_after.min,
+      optimized.angles_after.max, optimized.angles_after.mean, dir.string(), o.np);
+  return 0;
+}
+
+}  // namespace
+
+void add_build_command(CLI::App& app, Action& action) {
+  auto opt = std::make_shared<BuildOptions>();
+  auto* cmd = app.add_subcommand(
+      "build", "surface -> remesh -> dual -> optimised sp2 carbon: LAMMPS data, REBO2 deck, XYZ, PDB, ring PLY");
+  cmd->add_option("in", opt->in, "input mesh (.off .obj .ply .stl); default: the built-in sphere");
+  cmd->add_option("-o,--output", opt->out, "output folder")->required();
+  cmd->add_option("--bond", opt->bond, "C-C bond length b in A (primal edge sqrt(3) b)")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  auto* size = cmd->add_option("--size", opt->size, "scale so the longest bounding-box side is L (A)");
+  auto* scale = cmd->add_option("--scale", opt->scale, "multiply the input coordinates by s");
+  auto* atoms = cmd->add_option("--atoms", opt->atoms, "scale to about N atoms (area = N (sqrt(3)/4) a^2)");
+  size->excludes(scale)->excludes(atoms);
+  scale->excludes(atoms);
+  cmd->add_option("--emin", opt->emin, "lower edge bound (default 0.8 sqrt(3) b)");
+  cmd->add_option("--emax", opt->emax, "upper edge bound (default 1.2 sqrt(3) b)");
+  cmd->add_option("--iterations,-n", opt->remesh.iterations, "remesh: maximum iterations")->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--kl", opt->remesh.kl, "remesh: star number of the low-pass filter")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--kn", opt->remesh.kn, "remesh: star number of the nonlinear optimizer")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--p", opt->remesh.p, "remesh: replace the projection mesh every p iterations (0: never)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--l", opt->remesh.l, "remesh: percent of long+short edges that starts the nonlinear optimizer")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  const std::map<std::string, ParametrizationWeights> weights{{"mean-value", ParametrizationWeights::MeanValue},
+                                                             {"shape-preserving", ParametrizationWeights::ShapePreserving}};
+  cmd->add_option("--weights", opt->remesh.weights, "remesh: mean-value or shape-preserving")
+      ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
+  cmd->add_option("--optimize-iterations", opt->optimize.max_iterations, "dual optimisation: L-BFGS iterations (0: off)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--angle-weight", opt->optimize.angle_weight, "dual optimisation: weight of the angle term")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--surface-weight", opt->optimize.surface_weight, "dual optimisation: weight of the surface term")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--passivate", opt->passivate, "hydrogen on two-coordinated border carbons (C-H 1.09 A)");
+  cmd->add_flag("--topology", opt->topology, "atom_style full data file with Bonds and Angles");
+  cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
+  cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--np", opt->np, "deck: MPI ranks in the mpirun comment line")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->callback([&action, opt] { action = [opt]() -> int { return run_build(*opt); }; });
+}
+
+}  // namespace carbonmesh::cli
