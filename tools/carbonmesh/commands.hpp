@@ -13,5 +13,6 @@ void add_shape_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
 void add_build_command(CLI::App& app, Action& action);
 void add_remesh_command(CLI::App& app, Action& action);
+void add_simulate_command(CLI::App& app, Action& action);
 
 }  // namespace carbonmesh::cli
