@@ -11,9 +11,12 @@
 #include <sstream>
 #include <string>
 
+#include "carbonmesh/carbon/lammps_data.hpp"
 #include "carbonmesh/remesh/atomic_file.hpp"
+#include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/io.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "carbonmesh/simulations/lammps_atoms.hpp"
 #include "test_paths.hpp"
 
 namespace fs = std::filesystem;
@@ -95,4 +98,14 @@ TEST(Determinism, RemeshIsByteIdenticalAcrossRunsAndThreadCounts) {
   }
   EXPECT_EQ(outputs[0], outputs[1]) << "1 thread vs 2 threads";
   EXPECT_EQ(outputs[1], outputs[2]) << "two runs with 2 threads";
+}
+
+TEST(FuzzRegression, DataFileWithAHugeIdIsAnInputError) {
+  // Found by fuzz_lammps_data: an atom id of 1e300 was cast to int (undefined behaviour).
+  const auto dir = fresh_dir("fuzz-data");
+  const auto path = dir / "huge-id.data";
+  std::ofstream(path) << "LAMMPS data file\n\n1 atoms\n1 atom types\n\n-5 5 xlo xhi\n-5 5 ylo yhi\n-5 5 zlo zhi\n\n"
+                         "Masses\n\n1 12.011\n\nAtoms # atomic\n\n1e300 1 0 0 0\n";
+  EXPECT_THROW(read_lammps_data(path), InputError);
+  EXPECT_THROW(read_lammps_atoms(path), InputError);
 }

@@ -1,3 +1,4 @@
+#include <cmath>
 #include "carbonmesh/carbon/lammps_data.hpp"
 
 #include <fmt/format.h>
@@ -129,10 +130,16 @@ LammpsData read_lammps_data(const std::filesystem::path& file) {
     std::vector<double> v;
     for (double x; ls >> x;) v.push_back(x);
     if (!ls.eof()) fail("not a number");
+    // An id, type or atom index: a whole number in a sane range (fuzzing found casts of 1e300).
+    auto whole = [&](double x) {
+      if (!(x >= -1e9 && x <= 1e9) || x != std::floor(x)) fail("'" + std::to_string(x) + "' is not a valid id, type or index");
+      return static_cast<int>(x);
+    };
     if (section == "Masses") {
       if (v.size() != 2) fail("a Masses line needs type and mass");
-      const auto t = static_cast<std::size_t>(v[0]);
-      if (t < 1) fail("bad atom type");
+      const int type_number = whole(v[0]);
+      if (type_number < 1 || type_number > 1000) fail("bad atom type");
+      const auto t = static_cast<std::size_t>(type_number);
       if (d.masses.size() < t) d.masses.resize(t, 0.0);
       d.masses[t - 1] = v[1];
     } else if (section == "Atoms") {
@@ -142,16 +149,15 @@ LammpsData read_lammps_data(const std::filesystem::path& file) {
       if (full && v.size() != 7 && v.size() != 10) fail("an atom_style full line needs id mol type q x y z");
       if (!full && v.size() != 5 && v.size() != 8) fail("an atom_style atomic line needs id type x y z");
       const std::size_t type = full ? 2 : 1, x = full ? 4 : 2;
-      d.ids.push_back(static_cast<int>(v[0]));
-      d.types.push_back(static_cast<int>(v[type]));
+      d.ids.push_back(whole(v[0]));
+      d.types.push_back(whole(v[type]));
       d.positions.emplace_back(v[x], v[x + 1], v[x + 2]);
     } else if (section == "Bonds") {
       if (v.size() != 4) fail("a Bonds line needs id type atom atom");
-      d.bonds.push_back({static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3])});
+      d.bonds.push_back({whole(v[1]), whole(v[2]), whole(v[3])});
     } else if (section == "Angles") {
       if (v.size() != 5) fail("an Angles line needs id type atom atom atom");
-      d.angles.push_back({static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3]),
-                          static_cast<int>(v[4])});
+      d.angles.push_back({whole(v[1]), whole(v[2]), whole(v[3]), whole(v[4])});
     }
   }
   if (d.positions.size() != atoms)
