@@ -16,11 +16,9 @@ build: bootstrap
 
 CLI = $(BUILD)/tools/carbonmesh/carbonmesh
 
-# The main job on the built-in default shape.
+# The main job on the built-in default shape: remesh, dual, optimise, LAMMPS/REBO2 files and the defect report.
 run: build
-	mkdir -p $(OUT)
-	$(CLI) shape sphere --radius 10 --subdivisions 3 -o $(OUT)/sphere.off
-	$(CLI) stats $(OUT)/sphere.off
+	$(CLI) build -o $(OUT)
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -23,6 +23,7 @@
 #include "carbonmesh/remesh/remesher.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "commands.hpp"
+#include "defect_report.hpp"
 
 namespace carbonmesh::cli {
 namespace {
@@ -33,7 +34,7 @@ struct BuildOptions {
   std::optional<double> size, scale, atoms, emin, emax;
   RemeshSettings remesh;
   DualOptimizeSettings optimize;
-  bool passivate = false, topology = false, repair = false;
+  bool passivate = false, topology = false, repair = false, no_report = false;
   long steps = 10000;
   double temperature = 300.0;
   int np = 4;
@@ -159,6 +160,16 @@ int run_build(BuildOptions& o) {
     if (!file) throw std::runtime_error("cannot write " + tmp.string());
   });
 
+  // The defect report (as `carbonmesh analyze DIR`), unless --no-report. The structure is written either way.
+  if (!o.no_report) {
+    try {
+      write_defect_report(dir, dir / "analysis", DefectReportOptions{});
+      clock.stop("report");
+    } catch (const std::exception& e) {
+      spdlog::warn("defect report not written: {}", e.what());
+    }
+  }
+
   std::string rings;
   for (const auto& [size, n] : dual.counts.ring_sizes) rings += fmt::format(" {}:{}", size, n);
   std::cout << fmt::format(
@@ -218,6 +229,7 @@ void add_build_command(CLI::App& app, Action& action) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_flag("--passivate", opt->passivate, "hydrogen on two-coordinated border carbons (C-H 1.09 A)");
   cmd->add_flag("--topology", opt->topology, "atom_style full data file with Bonds and Angles");
+  cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
   cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str()
