@@ -105,15 +105,14 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   const Impl& t = *impl_;
   const Distance distance(t.map);
   const Search search(*t.tree, Point(v[0], v[1], v[2]), static_cast<unsigned>(k), 0, true, distance);
-  thread_local std::vector<int> candidates;
-  candidates.clear();
-  for (auto it = search.begin(); it != search.end(); ++it) {
-    const std::size_t i = it->first;
-    for (int j = t.vertex_face_begin[i]; j < t.vertex_face_begin[i + 1]; ++j)
-      candidates.push_back(t.vertex_faces[static_cast<std::size_t>(j)]);
+  // Candidate faces, each once: a per-thread stamp per target face instead of sort + unique.
+  thread_local std::vector<unsigned> face_stamp;
+  thread_local unsigned stamp = 0;
+  if (face_stamp.size() < t.faces.size()) face_stamp.resize(t.faces.size(), 0);
+  if (++stamp == 0) {  // wrapped: start over
+    std::fill(face_stamp.begin(), face_stamp.end(), 0u);
+    stamp = 1;
   }
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   struct Candidate {
     double distance;
     int face;
@@ -121,12 +120,19 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   };
   thread_local std::vector<Candidate> projections;
   projections.clear();
-  for (int f : candidates) {
-    const auto& tri = t.faces[static_cast<std::size_t>(f)];
-    const Vec3 p = closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
-                                             t.points[static_cast<std::size_t>(tri[1])],
-                                             t.points[static_cast<std::size_t>(tri[2])]);
-    projections.push_back({(v - p).norm(), f, p});
+  for (auto it = search.begin(); it != search.end(); ++it) {
+    const std::size_t i = it->first;
+    for (int j = t.vertex_face_begin[i]; j < t.vertex_face_begin[i + 1]; ++j) {
+      const int f = t.vertex_faces[static_cast<std::size_t>(j)];
+      auto& mark = face_stamp[static_cast<std::size_t>(f)];
+      if (mark == stamp) continue;
+      mark = stamp;
+      const auto& tri = t.faces[static_cast<std::size_t>(f)];
+      const Vec3 p = closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
+                                               t.points[static_cast<std::size_t>(tri[1])],
+                                               t.points[static_cast<std::size_t>(tri[2])]);
+      projections.push_back({(v - p).norm(), f, p});
+    }
   }
   std::sort(projections.begin(), projections.end(), [](const Candidate& a, const Candidate& b) {
     return a.distance != b.distance ? a.distance < b.distance : a.face < b.face;
@@ -141,7 +147,7 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
     if (c.distance >= best_score) break;
     // Neighbourhood-aware distance (section 4.5): |V - P| plus how much the edges to the neighbours change.
     double score = c.distance;
-    for (std::size_t j = 0; j < neighbors.size(); ++j)
+    for (std::size_t j = 0; j < neighbors.size() && score < best_score; ++j)
       score += std::abs(neighbor_lengths[j] - (c.point - neighbors[j]).norm());
     if (score < best_score) {
       best_score = score;
@@ -151,25 +157,46 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   return best;
 }
 
-void projection(const ProjectionTarget& target, TriMesh& mesh) {
+namespace {
+constexpr const char* kProjectedProperty = "carbonmesh:projected";
+}  // namespace
+
+void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved) {
   const int n = static_cast<int>(mesh.n_vertices());
+  // Where each vertex was put by the previous projection onto the same target ([3] = 1: valid). A vertex
+  // still there lies on the target, and Algorithm 4 would return it in place: it is skipped.
+  OpenMesh::VPropHandleT<std::array<double, 4>> last;
+  if (!mesh.get_property_handle(last, kProjectedProperty)) mesh.add_property(last, kProjectedProperty);
   std::vector<Vec3> projected(static_cast<std::size_t>(n));
+  std::vector<char> changed(static_cast<std::size_t>(n), 0);
 #pragma omp parallel
   {
     std::vector<Vec3> neighbors;
 #pragma omp for schedule(dynamic, 256)
     for (int i = 0; i < n; ++i) {
       const TriMesh::VertexHandle v(i);
-      if (mesh.status(v).deleted() || mesh.is_isolated(v)) {
-        projected[static_cast<std::size_t>(i)] = mesh.point(v);
-        continue;
-      }
+      if (mesh.status(v).deleted() || mesh.is_isolated(v)) continue;
+      const Vec3& p = mesh.point(v);
+      const auto& l = mesh.property(last, v);
+      if (only_moved && l[3] == 1.0 && l[0] == p[0] && l[1] == p[1] && l[2] == p[2]) continue;
       neighbors.clear();
       for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
-      projected[static_cast<std::size_t>(i)] = target.project(mesh.point(v), neighbors);
+      projected[static_cast<std::size_t>(i)] = target.project(p, neighbors);
+      changed[static_cast<std::size_t>(i)] = 1;
     }
   }
-  for (int i = 0; i < n; ++i) mesh.set_point(TriMesh::VertexHandle(i), projected[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < n; ++i) {
+    if (!changed[static_cast<std::size_t>(i)]) continue;
+    const TriMesh::VertexHandle v(i);
+    const Vec3& q = projected[static_cast<std::size_t>(i)];
+    mesh.set_point(v, q);
+    mesh.property(last, v) = {q[0], q[1], q[2], 1.0};
+  }
+}
+
+void forget_projection(TriMesh& mesh) {
+  OpenMesh::VPropHandleT<std::array<double, 4>> last;
+  if (mesh.get_property_handle(last, kProjectedProperty)) mesh.remove_property(last);
 }
 
 }  // namespace carbonmesh

@@ -65,6 +65,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     if (s.p > 0 && iteration > 0 && iteration % s.p == 0) {
       target = std::make_unique<TriMesh>(mesh);
       projection_target = std::make_unique<ProjectionTarget>(*target);
+      forget_projection(mesh);
     }
     // Few long and short edges left (the nonlinear phase): splitting an edge just above emax or collapsing
     // one just below emin only trades it for new short or long ones when emax < 2 emin, so edges within a
@@ -99,7 +100,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     else
       low_pass_filter(mesh, s.kl, s.weights, m);
     const double t_project = seconds();
-    projection(*projection_target, mesh);
+    projection(*projection_target, mesh, /*only_moved=*/true);
     spdlog::debug("iteration {}: {} {:.3f}s, projection {:.3f}s", iteration + 1,
                   nonlinear ? "nonlinear optimizer" : "low-pass filter", t_project - t_smooth, seconds() - t_project);
     ++iteration;
@@ -126,6 +127,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     post_process(mesh, s.kn, s.emin, s.emax);
     result.post_processed = true;
   }
+  forget_projection(mesh);
   mesh.update_normals();
   edges = edge_stats(mesh, interval);
   const ValenceStats valence = valence_stats(mesh);

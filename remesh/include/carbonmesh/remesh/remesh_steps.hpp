@@ -114,8 +114,12 @@ class ProjectionTarget {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-// Projects every vertex of `mesh` onto the target (OpenMP over vertices, applied in vertex order).
-void projection(const ProjectionTarget& target, TriMesh& mesh);
+// Projects every vertex of `mesh` onto the target (OpenMP over vertices, applied in vertex order). With
+// `only_moved`, vertices still where the previous projection onto this target put them are skipped
+// (they lie on the target already); the remembered positions live in a vertex property that
+// forget_projection() removes (call it when the target changes or the mesh is handed back).
+void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false);
+void forget_projection(TriMesh& mesh);
 
 // ---- post_process.cpp (section 4.6) -------------------------------------------------------------------
 
