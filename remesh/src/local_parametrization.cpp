@@ -231,10 +231,17 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
   Eigen::MatrixX2d x;
   if (count <= kDenseLimit) {
     // Small stars (kl <= 2): profiling showed SparseLU's symbolic analysis and allocations dominating the
-    // whole filter, so the same system is solved densely.
-    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(count, count);
+    // whole filter, so the same system is solved densely, in fixed-capacity (stack) matrices.
+    using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kDenseLimit, kDenseLimit>;
+    using Rhs = Eigen::Matrix<double, Eigen::Dynamic, 2, 0, kDenseLimit, 2>;
+    Dense a = Dense::Zero(count, count);
     for (const auto& t : triplets) a(t.row(), t.col()) += t.value();
-    x = a.partialPivLu().solve(rhs);
+    const Rhs b = rhs;
+    const Rhs solved = Eigen::PartialPivLU<Dense>(a).solve(b);
+    if (!solved.allFinite()) return false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (unknown[i] >= 0) uv[i] = solved.row(unknown[i]).transpose();
+    return true;
   } else {
     Eigen::SparseMatrix<double> a(count, count);
     a.setFromTriplets(triplets.begin(), triplets.end());
