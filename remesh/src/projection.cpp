@@ -61,6 +61,7 @@ struct ProjectionTarget::Impl {
   std::vector<Vec3> points;
   std::vector<Point> cgal_points;
   std::vector<std::array<int, 3>> faces;
+  std::vector<std::array<double, 4>> spheres;  // per face: centroid and the largest corner distance
   std::vector<int> vertex_face_begin, vertex_faces;  // CSR: faces around each vertex
   PointMap map;
   std::unique_ptr<Tree> tree;
@@ -83,6 +84,13 @@ ProjectionTarget::ProjectionTarget(const TriMesh& target) : impl_(std::make_uniq
     for (auto v : target.fv_range(f)) tri[static_cast<std::size_t>(i++)] = v.idx();
     t.faces.push_back(tri);
     for (int v : tri) ++count[static_cast<std::size_t>(v) + 1];
+  }
+  for (const auto& tri : t.faces) {
+    const Vec3 c = (t.points[static_cast<std::size_t>(tri[0])] + t.points[static_cast<std::size_t>(tri[1])] +
+                    t.points[static_cast<std::size_t>(tri[2])]) / 3.0;
+    double r = 0;
+    for (int v : tri) r = std::max(r, (t.points[static_cast<std::size_t>(v)] - c).norm());
+    t.spheres.push_back({c[0], c[1], c[2], r * (1 + 1e-12) + 1e-300});
   }
   for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
   t.vertex_face_begin = count;
@@ -118,8 +126,8 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
     int face;
     Vec3 point;
   };
-  thread_local std::vector<Candidate> projections;
-  projections.clear();
+  thread_local std::vector<std::pair<double, int>> bounded;  // (lower bound of |V - P|, face)
+  bounded.clear();
   for (auto it = search.begin(); it != search.end(); ++it) {
     const std::size_t i = it->first;
     for (int j = t.vertex_face_begin[i]; j < t.vertex_face_begin[i + 1]; ++j) {
@@ -127,19 +135,42 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
       auto& mark = face_stamp[static_cast<std::size_t>(f)];
       if (mark == stamp) continue;
       mark = stamp;
-      const auto& tri = t.faces[static_cast<std::size_t>(f)];
-      const Vec3 p = closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
-                                               t.points[static_cast<std::size_t>(tri[1])],
-                                               t.points[static_cast<std::size_t>(tri[2])]);
-      projections.push_back({(v - p).norm(), f, p});
+      const auto& sp = t.spheres[static_cast<std::size_t>(f)];
+      const double dc = (v - Vec3(sp[0], sp[1], sp[2])).norm();
+      bounded.emplace_back(std::max(0.0, dc - sp[3]), f);
     }
+  }
+  thread_local std::vector<double> neighbor_lengths;
+  neighbor_lengths.resize(neighbors.size());
+  for (std::size_t j = 0; j < neighbors.size(); ++j) neighbor_lengths[j] = (v - neighbors[j]).norm();
+  auto closest = [&](int f) {
+    const auto& tri = t.faces[static_cast<std::size_t>(f)];
+    return closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
+                                     t.points[static_cast<std::size_t>(tri[1])],
+                                     t.points[static_cast<std::size_t>(tri[2])]);
+  };
+  auto full_score = [&](const Vec3& p) {
+    double score = (v - p).norm();
+    for (std::size_t j = 0; j < neighbors.size(); ++j) score += std::abs(neighbor_lengths[j] - (p - neighbors[j]).norm());
+    return score;
+  };
+  // The score of the face with the smallest bound bounds the best score from above: faces whose distance
+  // bound reaches it cannot win and are not projected onto.
+  double bound = std::numeric_limits<double>::infinity();
+  if (!bounded.empty()) {
+    const auto first = *std::min_element(bounded.begin(), bounded.end());
+    bound = full_score(closest(first.second));
+  }
+  thread_local std::vector<Candidate> projections;
+  projections.clear();
+  for (const auto& [lb, f] : bounded) {
+    if (lb > bound) continue;
+    const Vec3 p = closest(f);
+    projections.push_back({(v - p).norm(), f, p});
   }
   std::sort(projections.begin(), projections.end(), [](const Candidate& a, const Candidate& b) {
     return a.distance != b.distance ? a.distance < b.distance : a.face < b.face;
   });
-  thread_local std::vector<double> neighbor_lengths;
-  neighbor_lengths.resize(neighbors.size());
-  for (std::size_t j = 0; j < neighbors.size(); ++j) neighbor_lengths[j] = (v - neighbors[j]).norm();
   Vec3 best = v;
   double best_score = std::numeric_limits<double>::infinity();
   for (const Candidate& c : projections) {
