@@ -13,16 +13,6 @@ using namespace carbonmesh;
 
 namespace {
 
-double surface_area(const TriMesh& mesh) {
-  double area = 0;
-  for (auto f : mesh.faces()) {
-    auto it = mesh.cfv_iter(f);
-    const Vec3 a = mesh.point(*it++), b = mesh.point(*it++), c = mesh.point(*it);
-    area += 0.5 * OpenMesh::cross(b - a, c - a).norm();
-  }
-  return area;
-}
-
 // An icosphere scaled so that its area is faces * (3 sqrt(3) / 4) b^2: the area a graphene-like net of
 // bond b needs for one atom per face.
 TriMesh fullerene_surface(int subdivisions, double b) {

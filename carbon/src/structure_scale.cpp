@@ -18,16 +18,6 @@ double area_per_atom(double bond) {
   return std::sqrt(3.0) / 4.0 * a * a;
 }
 
-double surface_area(const TriMesh& mesh) {
-  double area = 0;
-  for (auto f : mesh.faces()) {
-    auto it = mesh.cfv_iter(f);
-    const Vec3 a = mesh.point(*it++), b = mesh.point(*it++), c = mesh.point(*it);
-    area += 0.5 * OpenMesh::cross(b - a, c - a).norm();
-  }
-  return area;
-}
-
 namespace {
 double longest_side(const TriMesh& mesh) {
   const double inf = std::numeric_limits<double>::infinity();

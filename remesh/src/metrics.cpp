@@ -122,6 +122,16 @@ ValenceStats valence_stats(const TriMesh& mesh) {
   return s;
 }
 
+double surface_area(const TriMesh& mesh) {
+  double area = 0;
+  for (auto f : mesh.faces()) {
+    auto it = mesh.cfv_iter(f);
+    const Vec3 a = mesh.point(*it++), b = mesh.point(*it++), c = mesh.point(*it);
+    area += 0.5 * OpenMesh::cross(b - a, c - a).norm();
+  }
+  return area;
+}
+
 AngleStats angle_stats(const TriMesh& mesh) {
   AngleStats a{180.0, 0.0};
   bool any = false;

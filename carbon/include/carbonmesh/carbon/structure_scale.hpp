@@ -5,6 +5,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "carbonmesh/remesh/mesh.hpp"
+#include "carbonmesh/remesh/metrics.hpp"  // surface_area
 
 namespace carbonmesh {
 
@@ -41,8 +42,6 @@ StructureScale structure_scale(const TriMesh& mesh, const ScaleSettings& setting
 
 // Multiplies every point by `factor` (about the origin) and updates the normals.
 void scale_mesh(TriMesh& mesh, double factor);
-
-double surface_area(const TriMesh& mesh);
 
 nlohmann::json to_json(const StructureScale& s);
 

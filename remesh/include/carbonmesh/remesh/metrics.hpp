@@ -53,6 +53,9 @@ struct ValenceStats {
 };
 ValenceStats valence_stats(const TriMesh& mesh);
 
+// Total area of the faces.
+double surface_area(const TriMesh& mesh);
+
 struct AngleStats {
   double min_deg = 0, max_deg = 0;
 };
