@@ -101,10 +101,16 @@ TEST(BuildCommand, OpenCapIsPassivatedWithTopology) {
   EXPECT_GT(s["hydrogen_atoms"].get<int>(), 0);
   EXPECT_EQ(s["hydrogen_atoms"], s["passivation"]["hydrogens"]);
   EXPECT_GT(s["dual"]["open_rings"].get<int>(), 0);
-  const LammpsData d = read_lammps_data(dir / "out" / "structure.data");
+  // structure.data stays atomic for REBO; --topology adds structure-full.data with the bonds.
+  const LammpsData atomic = read_lammps_data(dir / "out" / "structure.data");
+  EXPECT_EQ(atomic.atom_style, "atomic");
+  EXPECT_TRUE(atomic.bonds.empty());
+  const LammpsData d = read_lammps_data(dir / "out" / "structure-full.data");
   EXPECT_EQ(d.atom_style, "full");
   EXPECT_EQ(d.atom_types, 2);
+  EXPECT_EQ(d.positions.size(), atomic.positions.size());
   EXPECT_EQ(d.bonds.size(), s["bonds"].get<std::size_t>());
+  EXPECT_EQ(s["files"]["lammps_data_full"], (dir / "out" / "structure-full.data").string());
   fs::remove_all(dir);
 }
 

@@ -14,12 +14,19 @@ OutputFiles write_structure_files(const std::filesystem::path& dir, const Carbon
                                   const DualMesh& dual, const OutputSettings& settings) {
   std::filesystem::create_directories(dir);
   OutputFiles files{dir / "structure.data", dir / "in.rebo", dir / "structure.xyz", dir / "structure.pdb",
-                    dir / "rings.ply"};
-  write_lammps_data(structure, files.data, settings.data);
+                    dir / "rings.ply", {}};
+  LammpsDataSettings atomic = settings.data;
+  atomic.topology = false;
+  write_lammps_data(structure, files.data, atomic);
+  if (settings.data.topology) {
+    files.full_data = dir / "structure-full.data";
+    write_lammps_data(structure, files.full_data, settings.data);
+    spdlog::info("wrote {} (atom_style full, Bonds and Angles)", files.full_data.string());
+  }
   ReboDeckSettings deck = settings.deck;
   deck.data_file = files.data.filename().string();
   deck.hydrogen = structure.has_hydrogen();
-  deck.topology = settings.data.topology;
+  deck.topology = false;
   write_rebo_deck(deck, files.deck);
   write_extended_xyz(structure, files.xyz, settings.data.vacuum);
   write_pdb(structure, files.pdb);
@@ -30,8 +37,10 @@ OutputFiles write_structure_files(const std::filesystem::path& dir, const Carbon
 }
 
 nlohmann::json to_json(const OutputFiles& f) {
-  return {{"lammps_data", f.data.string()}, {"rebo_deck", f.deck.string()}, {"xyz", f.xyz.string()},
-          {"pdb", f.pdb.string()},          {"rings_ply", f.ply.string()}};
+  nlohmann::json j{{"lammps_data", f.data.string()}, {"rebo_deck", f.deck.string()}, {"xyz", f.xyz.string()},
+                   {"pdb", f.pdb.string()},          {"rings_ply", f.ply.string()}};
+  if (!f.full_data.empty()) j["lammps_data_full"] = f.full_data.string();
+  return j;
 }
 
 }  // namespace carbonmesh

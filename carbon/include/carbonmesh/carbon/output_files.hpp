@@ -12,15 +12,19 @@
 namespace carbonmesh {
 
 struct OutputSettings {
-  LammpsDataSettings data;  // data.topology also selects atom_style full in the deck
-  ReboDeckSettings deck;    // data_file and the hydrogen/topology switches are set by write_structure_files
+  // structure.data is always atom_style atomic (what REBO needs); data.topology adds structure-full.data,
+  // atom_style full with Bonds and Angles, for other force fields.
+  LammpsDataSettings data;
+  ReboDeckSettings deck;    // data_file and the hydrogen switch are set by write_structure_files
 };
 
 struct OutputFiles {
   std::filesystem::path data, deck, xyz, pdb, ply;
+  std::filesystem::path full_data;  // structure-full.data, empty without data.topology
 };
 
-// Writes structure.data, in.rebo, structure.xyz, structure.pdb and rings.ply into `dir` (created if missing).
+// Writes structure.data, in.rebo, structure.xyz, structure.pdb and rings.ply (and structure-full.data with
+// data.topology) into `dir` (created if missing).
 OutputFiles write_structure_files(const std::filesystem::path& dir, const CarbonStructure& structure,
                                   const DualMesh& dual, const OutputSettings& settings);
 
