@@ -133,6 +133,11 @@ INSTANTIATE_TEST_SUITE_P(
                  off(kTetraVertices + "1 1 1\n", kTetraFaces + "3 0 1 4\n", 5, 5), "non-manifold edge"},
         BadInput{"pinched.off",
                  off("0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n", "3 0 1 2\n3 0 3 4\n", 5, 2), "non-manifold"},
+        // Two tetrahedra sharing one vertex: closed fans (OpenMesh's add_face used to print "complex vertex").
+        BadInput{"pinched_closed.off",
+                 off(kTetraVertices + "-1 0 0\n0 -1 0\n0 0 -1\n",
+                     kTetraFaces + "3 0 4 5\n3 0 6 4\n3 4 6 5\n3 0 5 6\n", 7, 8),
+                 "pinched"},
         BadInput{"degenerate.off", off("0 0 0\n1 0 0\n2 0 0\n0 1 0\n", "3 0 1 2\n3 0 1 3\n", 4, 2),
                  "degenerate"},
         BadInput{"duplicate_vertex.off",

@@ -4,10 +4,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
@@ -43,6 +45,25 @@ int count_files(const fs::path& dir) {
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++n;
   return n;
 }
+
+struct CliRun {
+  int exit_code;
+  std::string out, err;
+};
+
+// Runs the CLI (quiet: warnings and errors only) with stdout and stderr captured separately.
+CliRun run_cli(const fs::path& dir, const std::string& args) {
+  const auto out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command =
+      std::string(CARBONMESH_CLI) + " -q " + args + " > " + out.string() + " 2> " + err.string();
+  const int status = std::system(command.c_str());
+  CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_bytes(out), read_bytes(err)};
+  fs::remove(out);
+  fs::remove(err);
+  return r;
+}
+
+std::size_t lines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
 
 }  // namespace
 
@@ -108,4 +129,69 @@ TEST(FuzzRegression, DataFileWithAHugeIdIsAnInputError) {
                          "Masses\n\n1 12.011\n\nAtoms # atomic\n\n1e300 1 0 0 0\n";
   EXPECT_THROW(read_lammps_data(path), InputError);
   EXPECT_THROW(read_lammps_atoms(path), InputError);
+}
+
+TEST(BadInputCorpus, BuildRefusesBadOptionValuesInOneLine) {
+  const auto dir = fresh_dir("options");
+  for (const std::string option : {"--atoms 0", "--atoms -5", "--atoms 1e12", "--atoms nan", "--size 0",
+                                   "--scale 0", "--scale -1", "--bond 0", "--bond inf"}) {
+    const auto out = dir / "out";
+    const CliRun r = run_cli(dir, "build -o " + out.string() + " --no-report " + option);
+    EXPECT_EQ(r.exit_code, kExitBadInput) << option << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << option << ": " << r.err;
+    EXPECT_NE(r.err.find(option.substr(0, option.find(' '))), std::string::npos) << "names the option: " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << option << ": nothing is written";
+  }
+  const CliRun limit = run_cli(dir, "build -o " + (dir / "out").string() + " --atoms 1e12");
+  EXPECT_NE(limit.err.find("1e+08"), std::string::npos) << "names the limit: " << limit.err;
+}
+
+TEST(BadInputCorpus, ModelsInTheWrongUnitsAreRefusedNotRemeshedForever) {
+  // A sphere of radius 1e9 remeshed to edges of about 2.5 would need ~1e18 triangles (it used to run until
+  // the memory was full); one of radius 1e-9 would hold no atom.
+  const auto dir = fresh_dir("units");
+  save_mesh(make_icosphere({1e9, 2}), dir / "huge.off");
+  save_mesh(make_icosphere({1e-9, 2}), dir / "tiny.off");
+  const CliRun remeshed = run_cli(dir, "remesh " + (dir / "huge.off").string() + " " + (dir / "huge-out.off").string() +
+                                        " --emin 1.2 --emax 1.8");
+  EXPECT_EQ(remeshed.exit_code, kExitBadInput) << remeshed.err;
+  EXPECT_NE(remeshed.err.find("more than the limit"), std::string::npos) << remeshed.err;
+  EXPECT_FALSE(fs::exists(dir / "huge-out.off"));
+  const CliRun huge = run_cli(dir, "build " + (dir / "huge.off").string() + " -o " + (dir / "huge").string());
+  EXPECT_EQ(huge.exit_code, kExitBadInput) << huge.err;
+  EXPECT_EQ(lines(huge.err), 1u) << huge.err;
+  EXPECT_NE(huge.err.find("huge.off"), std::string::npos) << huge.err;
+  EXPECT_NE(huge.err.find("--atoms"), std::string::npos) << "says how to fix it: " << huge.err;
+  const CliRun tiny = run_cli(dir, "build " + (dir / "tiny.off").string() + " -o " + (dir / "tiny").string());
+  EXPECT_EQ(tiny.exit_code, kExitBadInput) << tiny.err;
+  EXPECT_NE(tiny.err.find("less than one"), std::string::npos) << tiny.err;
+  EXPECT_FALSE(fs::exists(dir / "huge"));
+  EXPECT_FALSE(fs::exists(dir / "tiny"));
+  // Scaled with --atoms, the huge sphere is a correct structure.
+  const CliRun scaled = run_cli(dir, "build " + (dir / "huge.off").string() + " -o " + (dir / "scaled").string() +
+                                      " --atoms 200 --no-report --steps 10");
+  ASSERT_EQ(scaled.exit_code, 0) << scaled.err;
+  std::ifstream summary_file(dir / "scaled" / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  EXPECT_GT(summary["atoms"].get<int>(), 150);
+  EXPECT_LT(summary["atoms"].get<int>(), 250);
+  EXPECT_EQ(summary["genus"], 0);
+  EXPECT_EQ(summary["remesh"]["topology_violation"], false);
+}
+
+TEST(BadInputCorpus, TooTightIntervalWarnsRunsAndReportsTheEdgesLeft) {
+  const auto dir = fresh_dir("tight");
+  save_mesh(make_icosphere({10.0, 2}), dir / "sphere.off");
+  const CliRun r = run_cli(dir, "remesh " + (dir / "sphere.off").string() + " " + (dir / "tight.off").string() +
+                                 " --emin 2.2 --emax 2.9 --iterations 5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("too tight"), std::string::npos) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(j["converged"].get<bool>());
+  EXPECT_FALSE(j["topology_violation"].get<bool>());
+  const std::string left = std::to_string(j["long"].get<std::size_t>()) + " long and " +
+                           std::to_string(j["short"].get<std::size_t>()) + " short edges remain outside [2.2, 2.9]";
+  EXPECT_GT(j["long"].get<std::size_t>() + j["short"].get<std::size_t>(), 0u);
+  EXPECT_NE(r.err.find(left), std::string::npos) << "expected '" << left << "' in: " << r.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "tight.off")) << "the best mesh is written";
 }

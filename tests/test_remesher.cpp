@@ -2,6 +2,8 @@
 // refused collapses, determinism.
 #include <gtest/gtest.h>
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
@@ -149,6 +151,106 @@ TEST(CollapseCheck, AcceptsAnOrdinaryCollapse) {
     EXPECT_FALSE(collapse_ok(mesh, h, mid, 1e-3));  // the new star would have long edges
     break;
   }
+}
+
+// The topology guard (issue 8). A sphere with one face removed (a border more) and a sphere with a second
+// sphere beside it (a component more) are other surface types than the sphere.
+TriMesh holed(TriMesh mesh) {
+  mesh.delete_face(TriMesh::FaceHandle(0), true);
+  mesh.garbage_collection();
+  return mesh;
+}
+
+TriMesh two_spheres(const TriMesh& sphere) {
+  TriMesh mesh = sphere;
+  std::vector<TriMesh::VertexHandle> map;
+  for (auto v : sphere.vertices()) map.push_back(mesh.add_vertex(sphere.point(v) + Vec3(100, 0, 0)));
+  for (auto f : sphere.faces()) {
+    std::vector<TriMesh::VertexHandle> corners;
+    for (auto v : sphere.fv_range(f)) corners.push_back(map[static_cast<std::size_t>(v.idx())]);
+    mesh.add_face(corners);
+  }
+  return mesh;
+}
+
+TEST(TopologyGuard, BestMeshRefusesABetterMeshOfAnotherSurfaceType) {
+  const TriMesh input = make_icosphere({10.0, 2});
+  BestMesh best(input, 100, 50.0);
+  EXPECT_EQ(best.input_topology().genus, 0);
+  // Better scores, wrong surface type: refused, the input stays the best.
+  EXPECT_FALSE(best.offer(holed(input), 0, 100.0));
+  EXPECT_FALSE(best.offer(two_spheres(input), 0, 100.0));
+  EXPECT_EQ(best.rejected(), 2u);
+  EXPECT_EQ(best.troubling(), 100u);
+  EXPECT_EQ(best.mesh().n_faces(), input.n_faces());
+  // A worse score is refused without a topology check (not counted as rejected).
+  EXPECT_FALSE(best.offer(holed(input), 200, 0.0));
+  EXPECT_EQ(best.rejected(), 2u);
+  // A better mesh of the input's surface type is kept; a tie wins by the higher share of regular vertices.
+  const TriMesh finer = make_icosphere({10.0, 3});
+  EXPECT_TRUE(best.offer(finer, 10, 60.0));
+  EXPECT_EQ(best.mesh().n_faces(), finer.n_faces());
+  EXPECT_FALSE(best.offer(input, 10, 60.0));
+  EXPECT_TRUE(best.offer(input, 10, 61.0));
+  EXPECT_EQ(best.mesh().n_faces(), input.n_faces());
+  EXPECT_EQ(best.troubling(), 10u);
+}
+
+TEST(TopologyGuard, FinalMeshOfAnotherSurfaceTypeFallsBackToTheBestValidMesh) {
+  const TriMesh input = make_icosphere({10.0, 2});
+  BestMesh best(input, 100, 50.0);
+  const TriMesh finer = make_icosphere({10.0, 3});
+  ASSERT_TRUE(best.offer(finer, 5, 80.0));
+
+  TriMesh mesh = holed(input);
+  const std::optional<Topology> changed = enforce_surface_type(mesh, best);
+  ASSERT_TRUE(changed.has_value());
+  EXPECT_EQ(changed->boundary_loops, 1u);
+  EXPECT_EQ(mesh.n_faces(), finer.n_faces()) << "replaced by the best valid mesh";
+  EXPECT_TRUE(topology(mesh).same_type(topology(input)));
+
+  mesh = two_spheres(input);
+  ASSERT_TRUE(enforce_surface_type(mesh, best).has_value());
+  EXPECT_EQ(topology(mesh).components, 1u);
+
+  // A mesh of the input's surface type is left alone.
+  TriMesh valid = input;
+  EXPECT_FALSE(enforce_surface_type(valid, best).has_value());
+  EXPECT_EQ(valid.n_faces(), input.n_faces());
+}
+
+TEST(TopologyGuard, RemeshKeepsFortyTwoComponentsWithoutAViolation) {
+  // 42 small spheres side by side: every one is refined into [1.2, 1.8] and stays a component of its own.
+  const TriMesh one = sphere(1, 2.5);  // radius about 4
+  TriMesh mesh;
+  for (int c = 0; c < 42; ++c) {
+    std::vector<TriMesh::VertexHandle> map;
+    for (auto v : one.vertices()) map.push_back(mesh.add_vertex(one.point(v) + Vec3(12.0 * c, 0, 0)));
+    for (auto f : one.faces()) {
+      std::vector<TriMesh::VertexHandle> corners;
+      for (auto v : one.fv_range(f)) corners.push_back(map[static_cast<std::size_t>(v.idx())]);
+      mesh.add_face(corners);
+    }
+  }
+  ASSERT_EQ(topology(mesh).components, 42u);
+  const RemeshResult result = remesh(mesh, RemeshSettings{});
+  EXPECT_FALSE(result.topology_violation);
+  EXPECT_EQ(result.after.components, 42u);
+  EXPECT_EQ(topology(mesh).components, 42u);
+  EXPECT_EQ(topology(mesh).genus, 0);
+  EXPECT_GT(mesh.n_faces(), 42u * one.n_faces()) << "refined";
+}
+
+TEST(Remesher, RefusesAnIntervalThatWouldFillTheMemory) {
+  // A sphere of radius 1e9 remeshed to edges of about 1.5 would need ~1e19 triangles.
+  TriMesh mesh = make_icosphere({1e9, 1});
+  try {
+    remesh(mesh, RemeshSettings{});
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the limit"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(mesh.n_faces(), make_icosphere({1e9, 1}).n_faces()) << "the mesh is untouched";
 }
 
 TEST(ValenceOptimizer, ImprovementOfAFlip) {

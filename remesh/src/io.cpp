@@ -188,6 +188,42 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
     }
   }
 
+  // Vertex manifoldness, before OpenMesh sees the faces (its add_face prints "complex vertex" to stderr and
+  // fails for a vertex where two closed fans meet). With manifold, consistently oriented edges the link of a
+  // vertex (the edges opposite it) is a union of paths and cycles; a manifold vertex has exactly one.
+  {
+    std::vector<std::vector<std::pair<int, int>>> link(soup.points.size());
+    for (const auto& t : kept)
+      for (std::size_t k = 0; k < 3; ++k)
+        link[static_cast<std::size_t>(t[k])].emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
+    std::vector<int> labels, parent;
+    for (std::size_t v = 0; v < link.size(); ++v) {
+      if (link[v].size() < 2) continue;
+      labels.clear();
+      for (const auto& [a, b] : link[v]) labels.push_back(a), labels.push_back(b);
+      std::sort(labels.begin(), labels.end());
+      labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+      parent.resize(labels.size());
+      for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+      auto find = [&parent](int i) {
+        while (parent[static_cast<std::size_t>(i)] != i)
+          i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+        return i;
+      };
+      auto index = [&labels](int label) {
+        return static_cast<int>(std::lower_bound(labels.begin(), labels.end(), label) - labels.begin());
+      };
+      std::size_t fans = labels.size();
+      for (const auto& [a, b] : link[v]) {
+        const int ra = find(index(a)), rb = find(index(b));
+        if (ra != rb) parent[static_cast<std::size_t>(ra)] = rb, --fans;
+      }
+      if (fans > 1)
+        throw InputError(source + ": non-manifold (pinched) vertex " + std::to_string(v) + " (" +
+                         std::to_string(fans) + " fans of faces meet there)");
+    }
+  }
+
   // Build the half-edge mesh; vertices no kept face uses are dropped.
   std::vector<char> used(soup.points.size(), 0);
   for (const auto& t : kept)

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -22,17 +23,18 @@ void validate(const RemeshSettings& s) {
   if (s.kl < 1 || s.kn < 1) throw InputError(fmt::format("kl {} and kn {} must be at least 1", s.kl, s.kn));
   if (s.p < 0) throw InputError(fmt::format("p {} must not be negative", s.p));
   if (!(s.l >= 0)) throw InputError(fmt::format("l {} must not be negative", s.l));
+  if (!std::isfinite(s.emax)) throw InputError(fmt::format("emax {} must be finite", s.emax));
 }
 
-// The best mesh so far: fewest long+short edges, ties by the higher share of regular vertices.
-struct BestMesh {
-  TriMesh mesh;
-  std::size_t troubling = 0;
-  double percent_regular = 0;
-  bool better(std::size_t t, double regular) const {
-    return t < troubling || (t == troubling && regular > percent_regular);
-  }
-};
+// About how many triangles the remeshed surface has: the area over an equilateral triangle of the mid edge.
+void check_size(const TriMesh& mesh, const RemeshSettings& s) {
+  const double m = 0.5 * (s.emin + s.emax);
+  const double faces = surface_area(mesh) / (std::sqrt(3.0) / 4.0 * m * m);
+  if (!(faces <= s.max_faces))
+    throw InputError(fmt::format("the interval [{}, {}] would need about {:.3g} triangles on this surface (area "
+                                 "{:.6g}), more than the limit {:.3g}: check the units or scale the model",
+                                 s.emin, s.emax, faces, surface_area(mesh), s.max_faces));
+}
 
 constexpr int kStallIterations = 5;
 
@@ -43,8 +45,31 @@ double troubling_percent(const EdgeStats& e) {
 
 }  // namespace
 
+BestMesh::BestMesh(const TriMesh& input, std::size_t troubling, double percent_regular)
+    : input_(topology(input)), mesh_(input), troubling_(troubling), percent_regular_(percent_regular) {}
+
+bool BestMesh::offer(const TriMesh& mesh, std::size_t troubling, double percent_regular) {
+  if (!(troubling < troubling_ || (troubling == troubling_ && percent_regular > percent_regular_))) return false;
+  if (!topology(mesh).same_type(input_)) {
+    ++rejected_;
+    return false;
+  }
+  mesh_ = mesh;
+  troubling_ = troubling;
+  percent_regular_ = percent_regular;
+  return true;
+}
+
+std::optional<Topology> enforce_surface_type(TriMesh& mesh, const BestMesh& best) {
+  const Topology now = topology(mesh);
+  if (now.same_type(best.input_topology())) return std::nullopt;
+  mesh = best.mesh();
+  return now;
+}
+
 RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   validate(s);
+  check_size(mesh, s);
   const auto start = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   RemeshResult result;
@@ -56,7 +81,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   auto target = std::make_unique<TriMesh>(mesh);  // M: the projection mesh
   auto projection_target = std::make_unique<ProjectionTarget>(*target);
   EdgeStats edges = edge_stats(mesh, interval);
-  BestMesh best{mesh, edges.long_edges + edges.short_edges, valence_stats(mesh).percent_regular};
+  BestMesh best(mesh, edges.long_edges + edges.short_edges, valence_stats(mesh).percent_regular);
 
   int iteration = 0;
   std::size_t lowest = std::numeric_limits<std::size_t>::max();
@@ -99,6 +124,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       nonlinear_optimizer(mesh, s.kn, s.emin, s.emax);
     else
       low_pass_filter(mesh, s.kl, s.weights, m);
+    { const EdgeStats dbg = edge_stats(mesh, interval); spdlog::debug("DBG before projection {} {}", dbg.long_edges, dbg.short_edges); }
     const double t_project = seconds();
     projection(*projection_target, mesh, /*only_moved=*/true);
     spdlog::debug("iteration {}: {} {:.3f}s, projection {:.3f}s", iteration + 1,
@@ -118,15 +144,24 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     log.nonlinear = nonlinear;
     result.log.push_back(log);
     if (s.on_iteration) s.on_iteration(log);
-    if (best.better(edges.long_edges + edges.short_edges, valence.percent_regular))
-      best = BestMesh{mesh, edges.long_edges + edges.short_edges, valence.percent_regular};
+    best.offer(mesh, edges.long_edges + edges.short_edges, valence.percent_regular);
   }
   result.iterations = iteration;
   if (edges.long_edges + edges.short_edges > 0) {
-    mesh = best.mesh;
+    mesh = best.mesh();
     post_process(mesh, s.kn, s.emin, s.emax);
     result.post_processed = true;
   }
+  // The topology guard: a final mesh of another surface type is replaced by the best valid one.
+  if (const std::optional<Topology> changed = enforce_surface_type(mesh, best)) {
+    result.topology_violation = true;
+    result.changed = *changed;
+    spdlog::error("remesh changed the surface type (genus {} -> {}, components {} -> {}, borders {} -> {}); "
+                  "kept the best mesh with the input's surface type",
+                  result.before.genus, changed->genus, result.before.components, changed->components,
+                  result.before.boundary_loops, changed->boundary_loops);
+  }
+  result.rejected_best = best.rejected();
   forget_projection(mesh);
   mesh.update_normals();
   edges = edge_stats(mesh, interval);
@@ -138,10 +173,6 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   result.percent_eval_gt1 = valence.percent_eval_gt1;
   result.after = topology(mesh);
   result.seconds = seconds();
-  if (!result.before.same_type(result.after))
-    spdlog::error("remesh changed the surface type: genus {} -> {}, components {} -> {}, borders {} -> {}",
-                  result.before.genus, result.after.genus, result.before.components, result.after.components,
-                  result.before.boundary_loops, result.after.boundary_loops);
   return result;
 }
 
@@ -156,7 +187,7 @@ nlohmann::json to_json(const RemeshResult& r) {
                    {"std", l.std},
                    {"seconds", l.seconds},
                    {"nonlinear", l.nonlinear}});
-  return {{"converged", r.converged},
+  nlohmann::json j = {{"converged", r.converged},
           {"iterations", r.iterations},
           {"post_processed", r.post_processed},
           {"long", r.long_edges},
@@ -167,7 +198,11 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"topology_before", to_json(r.before)},
           {"topology_after", to_json(r.after)},
           {"topology_kept", r.before.same_type(r.after)},
+          {"topology_violation", r.topology_violation},
+          {"rejected_best", r.rejected_best},
           {"log", log}};
+  if (r.topology_violation) j["topology_changed"] = to_json(r.changed);
+  return j;
 }
 
 }  // namespace carbonmesh

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -61,7 +62,31 @@ class StageClock {
   std::map<std::string, double> seconds_;
 };
 
+// The largest structure `build` makes (documented in README and docs/reliability.md): 1e8 atoms is about
+// 1e8 primal triangles, far beyond what the remesher and LAMMPS handle on one machine.
+constexpr double kMaxAtoms = 1e8;
+
+// Option values CLI11 lets through (0, negative, nan, inf) are refused before any work, one line, exit 2.
+void check_options(const BuildOptions& o) {
+  auto positive = [](const char* name, double v) {
+    if (!(v > 0) || !std::isfinite(v)) throw InputError(fmt::format("{} {} must be a positive number", name, v));
+  };
+  positive("--bond", o.bond);
+  positive("--temperature", o.temperature);
+  if (o.size) positive("--size", *o.size);
+  if (o.scale) positive("--scale", *o.scale);
+  if (o.atoms) {
+    positive("--atoms", *o.atoms);
+    if (*o.atoms < 1 || *o.atoms > kMaxAtoms)
+      throw InputError(fmt::format("--atoms {} is outside [1, {:.0e}] (the largest structure carbonmesh builds)",
+                                   *o.atoms, kMaxAtoms));
+  }
+  if (o.emin) positive("--emin", *o.emin);
+  if (o.emax) positive("--emax", *o.emax);
+}
+
 int run_build(BuildOptions& o) {
+  check_options(o);
   StageClock clock;
   // Load (validated) or the built-in icosphere.
   TriMesh mesh;
@@ -90,6 +115,17 @@ int run_build(BuildOptions& o) {
   if (o.emax) scaled.emax = *o.emax;
   if (!(scaled.emin > 0) || !(scaled.emin < scaled.emax))
     throw InputError(fmt::format("edge interval [{}, {}] must satisfy 0 < emin < emax", scaled.emin, scaled.emax));
+  if (!(scaled.expected_atoms >= 1))
+    throw InputError(fmt::format("{}: the surface (area {:.6g} A^2) would hold about {:.3g} atoms, less than one: "
+                                 "the coordinates are taken as Angstrom; scale it with --size, --scale or --atoms",
+                                 source, scaled.area, scaled.expected_atoms));
+  if (!(scaled.expected_atoms <= kMaxAtoms))
+    throw InputError(fmt::format("{}: the surface (area {:.6g} A^2) would hold about {:.3g} atoms, more than the "
+                                 "limit {:.0e}: scale it with --size, --scale or --atoms",
+                                 source, scaled.area, scaled.expected_atoms, kMaxAtoms));
+  if ((o.emin || o.emax) && scaled.emin > 2.0 / 3.0 * scaled.emax * (1 + 1e-12))
+    spdlog::warn("interval [{}, {}] is too tight: emin > 2/3 emax (dissertation Ineq 5.1), long and short edges may "
+                 "remain", scaled.emin, scaled.emax);
   scale_mesh(mesh, scaled.factor);
   spdlog::info("{}: scaled by {:.6g} to area {:.1f} A^2 (about {:.0f} atoms), edges in [{:.4f}, {:.4f}] A", source,
                scaled.factor, scaled.area, scaled.expected_atoms, scaled.emin, scaled.emax);
@@ -105,6 +141,9 @@ int run_build(BuildOptions& o) {
                  l.nonlinear ? "  (nonlinear)" : "");
   };
   const RemeshResult remeshed = remesh(mesh, o.remesh);
+  if (!remeshed.converged)
+    spdlog::warn("{} long and {} short edges remain outside [{:.4f}, {:.4f}]", remeshed.long_edges,
+                 remeshed.short_edges, scaled.emin, scaled.emax);
   mesh.garbage_collection();
   const MeshStats remeshed_stats = mesh_stats(mesh, EdgeInterval{scaled.emin, scaled.emax});
   clock.stop("remesh");
@@ -187,6 +226,15 @@ int run_build(BuildOptions& o) {
       optimized.angles_before.max, optimized.angles_before.mean, optimized.bonds_after.min,
       optimized.bonds_after.mean, optimized.bonds_after.std, optimized.bonds_after.max, optimized.angles_after.min,
       optimized.angles_after.max, optimized.angles_after.mean, dir.string(), o.np);
+  if (remeshed.topology_violation) {
+    std::cerr << fmt::format("carbonmesh: error: {}: remeshing changed the surface type (genus {} components {} "
+                             "borders {} -> genus {} components {} borders {}); the structure in {} is built on "
+                             "the best mesh with the input's surface type\n",
+                             source, remeshed.before.genus, remeshed.before.components,
+                             remeshed.before.boundary_loops, remeshed.changed.genus, remeshed.changed.components,
+                             remeshed.changed.boundary_loops, dir.string());
+    return kExitTopologyViolation;
+  }
   return 0;
 }
 
@@ -198,8 +246,7 @@ void add_build_command(CLI::App& app, Action& action) {
       "build", "surface -> remesh -> dual -> optimised sp2 carbon: LAMMPS data, REBO2 deck, XYZ, PDB, ring PLY");
   cmd->add_option("in", opt->in, "input mesh (.off .obj .ply .stl); default: the built-in sphere");
   cmd->add_option("-o,--output", opt->out, "output folder")->required();
-  cmd->add_option("--bond", opt->bond, "C-C bond length b in A (primal edge sqrt(3) b)")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--bond", opt->bond, "C-C bond length b in A (primal edge sqrt(3) b)")->capture_default_str();
   auto* size = cmd->add_option("--size", opt->size, "scale so the longest bounding-box side is L (A)");
   auto* scale = cmd->add_option("--scale", opt->scale, "multiply the input coordinates by s");
   auto* atoms = cmd->add_option("--atoms", opt->atoms, "scale to about N atoms (area = N (sqrt(3)/4) a^2)");
@@ -232,8 +279,7 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
   cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str();
   cmd->add_option("--np", opt->np, "deck: MPI ranks in the mpirun comment line")->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->callback([&action, opt] { action = [opt]() -> int { return run_build(*opt); }; });

@@ -105,6 +105,15 @@ void add_remesh_command(CLI::App& app, Action& action) {
             result.seconds, topology_text(result.before), topology_text(result.after),
             result.before.same_type(result.after) ? "" : "  (SURFACE TYPE CHANGED)");
       }
+      if (!result.converged)
+        spdlog::warn("{} long and {} short edges remain outside [{}, {}]", result.long_edges, result.short_edges,
+                     opt->emin, opt->emax);
+      if (result.topology_violation) {
+        std::cerr << fmt::format("carbonmesh: error: {}: remeshing changed the surface type ({} -> {}); wrote the "
+                                 "best mesh with the input's surface type to {}\n",
+                                 opt->in, topology_text(result.before), topology_text(result.changed), opt->out);
+        return kExitTopologyViolation;
+      }
       return 0;
     };
   });

@@ -3,6 +3,7 @@
 // into [emin, emax] while topology and shape are kept and valences are made regular.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@ struct RemeshSettings {
   int p = 0;                      // replace the projection target by the current mesh every p iterations (0: never)
   double l = 0.5;                 // percent of long+short edges at or below which the nonlinear optimizer runs
   ParametrizationWeights weights = ParametrizationWeights::MeanValue;
+  // Refuse (InputError) an interval that would need more triangles than this: the estimate is the surface area
+  // over the area of an equilateral triangle of edge (emin + emax) / 2. Guards against a model in the wrong
+  // units (a 1e9 sphere remeshed to edges of 2) filling the memory.
+  double max_faces = 1e8;
   // Called after every iteration (progress lines, CSV logs). May be empty.
   std::function<void(const IterationLog&)> on_iteration;
 };
@@ -46,10 +51,41 @@ struct RemeshResult {
   double percent_eval_gt1 = 0;  // vertices with (ideal - valence)^2 > 1
   double seconds = 0;
   Topology before, after;  // the surface type (genus, components, borders) is kept: before.same_type(after)
+  // The topology guard: the final mesh had another surface type than the input (`changed` holds it) and was
+  // replaced by the best mesh of the run with the input's surface type (the input itself at worst).
+  bool topology_violation = false;
+  Topology changed;
+  std::size_t rejected_best = 0;  // iterations whose better mesh was refused as best for a changed surface type
   std::vector<IterationLog> log;
 };
 
-// Remeshes `mesh` in place. Throws InputError for an invalid interval (emin <= 0 or emin >= emax).
+// The best mesh of a run: fewest long+short edges, ties by the higher share of regular vertices, and only a mesh
+// with the surface type (genus, components, borders) of the input. Starts with the input, which always qualifies.
+class BestMesh {
+ public:
+  BestMesh(const TriMesh& input, std::size_t troubling, double percent_regular);
+  // Keeps a copy of `mesh` if it scores better and has the input's surface type (computed only for a better
+  // score). Returns whether it was kept.
+  bool offer(const TriMesh& mesh, std::size_t troubling, double percent_regular);
+  const TriMesh& mesh() const { return mesh_; }
+  const Topology& input_topology() const { return input_; }
+  std::size_t troubling() const { return troubling_; }
+  std::size_t rejected() const { return rejected_; }  // better meshes refused for their surface type
+
+ private:
+  Topology input_;
+  TriMesh mesh_;
+  std::size_t troubling_ = 0;
+  double percent_regular_ = 0;
+  std::size_t rejected_ = 0;
+};
+
+// The end-of-remesh check: if `mesh` has another surface type than best.input_topology(), replaces it by
+// best.mesh() and returns the rejected topology; otherwise leaves it and returns nothing.
+std::optional<Topology> enforce_surface_type(TriMesh& mesh, const BestMesh& best);
+
+// Remeshes `mesh` in place. Throws InputError for an invalid interval (emin <= 0 or emin >= emax) or one that
+// would need more than settings.max_faces triangles.
 RemeshResult remesh(TriMesh& mesh, const RemeshSettings& settings);
 
 nlohmann::json to_json(const RemeshResult& result);
