@@ -28,14 +28,14 @@ void add_analyze_command(CLI::App& app, Action& action) {
       ->required();
   cmd->add_option("-o,--output", opt->output, "output folder (default: INPUT/analysis for a folder, else STEM-analysis)");
   cmd->add_option("--plane", opt->report.settings.plane,
-                  "mirror plane for the side counts: x, y, z (through the centroid), nx,ny,nz,d, or auto");
+                  "mirror plane for the side counts: x, y, z (through the centroid), nx,ny,nz,d (A), or auto (default: none, no side counts)");
   cmd->add_option("--cutoff", opt->report.settings.cutoff, "bond cutoff for data files (Angstrom)")->default_val(1.85);
   cmd->add_flag("--data-bonds", opt->report.settings.data_bonds, "use the data file's Bonds section instead of the cutoff");
-  cmd->add_option("--max-ring", opt->report.settings.rings.max_size, "largest SP ring searched in data files")
+  cmd->add_option("--max-ring", opt->report.settings.rings.max_size, "largest SP ring searched in data files (atoms)")
       ->default_val(10)
       ->check(CLI::Range(3, 32));
   cmd->add_option("--mirror-samples", opt->report.settings.mirror.final_samples,
-                  "Hausdorff samples a side for the mirror residual")
+                  "Hausdorff samples a side for the mirror residual (count)")
       ->default_val(100000)
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-plots", opt->no_plots, "skip the PNG plots and report.html (no Python needed)");

@@ -247,13 +247,13 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_option("in", opt->in, "input mesh (.off .obj .ply .stl); default: the built-in sphere");
   cmd->add_option("-o,--output", opt->out, "output folder")->required();
   cmd->add_option("--bond", opt->bond, "C-C bond length b in A (primal edge sqrt(3) b)")->capture_default_str();
-  auto* size = cmd->add_option("--size", opt->size, "scale so the longest bounding-box side is L (A)");
-  auto* scale = cmd->add_option("--scale", opt->scale, "multiply the input coordinates by s");
-  auto* atoms = cmd->add_option("--atoms", opt->atoms, "scale to about N atoms (area = N (sqrt(3)/4) a^2)");
+  auto* size = cmd->add_option("--size", opt->size, "scale so the longest bounding-box side is L (A; default: none of --size/--scale/--atoms: input units are A)");
+  auto* scale = cmd->add_option("--scale", opt->scale, "multiply the input coordinates by s (dimensionless; the result is in A; default: none)");
+  auto* atoms = cmd->add_option("--atoms", opt->atoms, "scale to about N atoms (count; area = N (sqrt(3)/4) a^2, 2.62 A^2 per atom at b = 1.42; default: none)");
   size->excludes(scale)->excludes(atoms);
   scale->excludes(atoms);
-  cmd->add_option("--emin", opt->emin, "lower edge bound (default 0.8 sqrt(3) b)");
-  cmd->add_option("--emax", opt->emax, "upper edge bound (default 1.2 sqrt(3) b)");
+  cmd->add_option("--emin", opt->emin, "lower edge bound of the remesh, A (default 0.8 sqrt(3) b = 1.968 at b = 1.42)");
+  cmd->add_option("--emax", opt->emax, "upper edge bound of the remesh, A (default 1.2 sqrt(3) b = 2.951 at b = 1.42)");
   cmd->add_option("--iterations,-n", opt->remesh.iterations, "remesh: maximum iterations")->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--kl", opt->remesh.kl, "remesh: star number of the low-pass filter")->capture_default_str()
@@ -270,17 +270,17 @@ void add_build_command(CLI::App& app, Action& action) {
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
   cmd->add_option("--optimize-iterations", opt->optimize.max_iterations, "dual optimisation: L-BFGS iterations (0: off)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--angle-weight", opt->optimize.angle_weight, "dual optimisation: weight of the angle term")
+  cmd->add_option("--angle-weight", opt->optimize.angle_weight, "dual optimisation: weight w_a of the angle term (dimensionless, relative to the bond term)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--surface-weight", opt->optimize.surface_weight, "dual optimisation: weight of the surface term")
+  cmd->add_option("--surface-weight", opt->optimize.surface_weight, "dual optimisation: weight w_s of the surface-distance term (per A^2)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_flag("--passivate", opt->passivate, "hydrogen on two-coordinated border carbons (C-H 1.09 A)");
-  cmd->add_flag("--topology", opt->topology, "atom_style full data file with Bonds and Angles");
+  cmd->add_flag("--topology", opt->topology, "also write structure-full.data: atom_style full with Bonds and Angles (other force fields)");
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
   cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str();
-  cmd->add_option("--np", opt->np, "deck: MPI ranks in the mpirun comment line")->capture_default_str()
+  cmd->add_option("--np", opt->np, "deck: MPI ranks in the mpirun comment line (count)")->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->callback([&action, opt] { action = [opt]() -> int { return run_build(*opt); }; });
 }

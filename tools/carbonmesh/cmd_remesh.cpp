@@ -37,8 +37,8 @@ void add_remesh_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("remesh", "remesh so that every edge length lies in [emin, emax] (Algorithm 1)");
   cmd->add_option("in", opt->in, "input mesh (.off .obj .ply .stl)")->required();
   cmd->add_option("out", opt->out, "output mesh (.off .obj .ply .stl)")->required();
-  cmd->add_option("--emin", opt->emin, "lower bound of the edge interval")->required();
-  cmd->add_option("--emax", opt->emax, "upper bound of the edge interval")->required();
+  cmd->add_option("--emin", opt->emin, "lower bound of the edge interval (mesh units)")->required();
+  cmd->add_option("--emax", opt->emax, "upper bound of the edge interval (mesh units)")->required();
   cmd->add_option("--iterations,-n", opt->iterations, "maximum number of iterations (n)")->default_val(150)->check(CLI::NonNegativeNumber);
   cmd->add_option("--kl", opt->kl, "star number of the low-pass filter")->default_val(2)->check(CLI::PositiveNumber);
   cmd->add_option("--kn", opt->kn, "star number of the nonlinear optimizer")->default_val(2)->check(CLI::PositiveNumber);
@@ -49,7 +49,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};
   cmd->add_option("--weights", opt->weights, "parametrization weights: mean-value or shape-preserving")
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
-  cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV");
+  cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
   cmd->add_flag("--json", opt->json, "final summary as one JSON object instead of text");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
   cmd->callback([&action, opt] {

@@ -22,17 +22,17 @@ void add_shape_command(CLI::App& app, Action& action) {
       ->required()
       ->check(CLI::IsMember(shape_names()));
   cmd->add_option("-o,--output", opt->output, "output mesh (.off .obj .ply .stl)")->required();
-  cmd->add_option("--radius", opt->sphere.radius, "sphere radius / helix radius / capsule radius")
+  cmd->add_option("--radius", opt->sphere.radius, "sphere radius / helix radius / capsule radius (mesh units, e.g. A)")
       ->capture_default_str();
-  cmd->add_option("--subdivisions", opt->sphere.subdivisions, "sphere: icosahedron subdivisions (0-9)")
+  cmd->add_option("--subdivisions", opt->sphere.subdivisions, "sphere: icosahedron subdivisions (0-9; 20*4^k faces)")
       ->capture_default_str();
-  cmd->add_option("--major", opt->torus.major_radius, "torus: radius of the centre circle")->capture_default_str();
-  cmd->add_option("--minor", opt->torus.minor_radius, "torus: tube radius")->capture_default_str();
-  cmd->add_option("--pitch", opt->helix.pitch, "helix: rise per turn")->capture_default_str();
-  cmd->add_option("--turns", opt->helix.turns, "helix: number of turns")->capture_default_str();
-  cmd->add_option("--tube-radius", opt->helix.tube_radius, "helix: tube radius")->capture_default_str();
-  cmd->add_option("--length", opt->capsule.length, "capsule: length of the straight part")->capture_default_str();
-  cmd->add_option("--edge", opt->edge, "torus/helix/capsule: target edge length (0: default resolution)")
+  cmd->add_option("--major", opt->torus.major_radius, "torus: radius of the centre circle (mesh units)")->capture_default_str();
+  cmd->add_option("--minor", opt->torus.minor_radius, "torus: tube radius (mesh units)")->capture_default_str();
+  cmd->add_option("--pitch", opt->helix.pitch, "helix: rise per turn (mesh units)")->capture_default_str();
+  cmd->add_option("--turns", opt->helix.turns, "helix: number of turns (may be fractional)")->capture_default_str();
+  cmd->add_option("--tube-radius", opt->helix.tube_radius, "helix: tube radius (mesh units)")->capture_default_str();
+  cmd->add_option("--length", opt->capsule.length, "capsule: length of the straight part (mesh units)")->capture_default_str();
+  cmd->add_option("--edge", opt->edge, "torus/helix/capsule: target edge length, mesh units (0: default resolution)")
       ->capture_default_str();
   cmd->callback([&action, opt, cmd] {
     action = [opt, cmd]() -> int {

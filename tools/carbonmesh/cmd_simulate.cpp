@@ -96,7 +96,7 @@ void add_simulate_command(CLI::App& app, Action& action) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--np", opt->settings.np, "1: in-process liblammps; N > 1: mpirun -np N lmp")->capture_default_str()
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", opt->settings.seed, "velocity seed")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", opt->settings.seed, "velocity seed (LAMMPS velocity create)")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--cutoff", opt->settings.stability.cutoff, "C-C bond cutoff of the analysis (A)")
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--potential", opt->potential, "CH.rebo (default: $LAMMPS_POTENTIALS, /usr/share/lammps/potentials)");

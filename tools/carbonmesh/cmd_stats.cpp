@@ -23,9 +23,9 @@ void add_stats_command(CLI::App& app, Action& action) {
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("stats", "mesh metrics: topology, edge lengths, valence, angles, Hausdorff");
   cmd->add_option("mesh", opt->mesh, "input mesh (.off .obj .ply .stl)")->required();
-  cmd->add_option("--emin", opt->emin, "lower bound of the edge interval (edges shorter are 'short')");
-  cmd->add_option("--emax", opt->emax, "upper bound of the edge interval (edges longer are 'long')");
-  cmd->add_option("--ref", opt->ref, "reference mesh for the symmetric Hausdorff distance");
+  cmd->add_option("--emin", opt->emin, "lower bound of the edge interval, mesh units (edges shorter are 'short'; default: none, no interval counts)");
+  cmd->add_option("--emax", opt->emax, "upper bound of the edge interval, mesh units (edges longer are 'long'; default: none)");
+  cmd->add_option("--ref", opt->ref, "reference mesh for the symmetric Hausdorff distance, in mesh units (default: none, no distance)");
   cmd->add_option("--samples", opt->samples, "Hausdorff samples per surface")->default_val(200000)->check(CLI::PositiveNumber);
   cmd->add_flag("--json", opt->json, "one JSON object instead of text");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");

@@ -14,5 +14,7 @@ void add_analyze_command(CLI::App& app, Action& action);
 void add_build_command(CLI::App& app, Action& action);
 void add_remesh_command(CLI::App& app, Action& action);
 void add_simulate_command(CLI::App& app, Action& action);
+// `help [TOPIC]`: a command's options with defaults and units, all commands, or a topic page.
+void add_help_command(CLI::App& app, Action& action);
 
 }  // namespace carbonmesh::cli

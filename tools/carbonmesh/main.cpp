@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   carbonmesh::cli::add_build_command(app, action);
   carbonmesh::cli::add_remesh_command(app, action);
   carbonmesh::cli::add_simulate_command(app, action);
+  carbonmesh::cli::add_help_command(app, action);
 
   try {
     app.parse(argc, argv);

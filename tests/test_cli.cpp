@@ -1,0 +1,111 @@
+// The command line's help: `carbonmesh help TOPIC` and every option of every command showing its default.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "test_paths.hpp"
+
+namespace {
+
+struct RunResult {
+  int exit_code;
+  std::string output;
+};
+
+RunResult run_cli(const std::string& args) {
+  const auto out = std::filesystem::temp_directory_path() /
+                   ("carbonmesh-test-cli-" + std::to_string(::getpid()) + ".txt");
+  const std::string command = std::string(CARBONMESH_CLI) + " " + args + " > " + out.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(out);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::filesystem::remove(out);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+const std::vector<std::string> kCommands{"stats", "shape", "remesh", "build", "analyze", "simulate"};
+
+// The option blocks of a CLI11 help text: a line starting with "  -" and its indented continuation lines.
+std::vector<std::string> option_blocks(const std::string& help) {
+  std::vector<std::string> blocks;
+  std::istringstream in(help);
+  std::string line;
+  bool in_options = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("Options:", 0) == 0) {
+      in_options = true;
+      continue;
+    }
+    if (!in_options) continue;
+    if (line.rfind("  -", 0) == 0)
+      blocks.push_back(line);
+    else if (line.rfind("      ", 0) == 0 && !blocks.empty())
+      blocks.back() += " " + line;
+    else if (!line.empty() && line[0] != ' ')
+      in_options = false;
+  }
+  return blocks;
+}
+
+}  // namespace
+
+TEST(CliHelp, ListsTheTopicsWithoutOne) {
+  const RunResult r = run_cli("help");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const char* topic : {"all", "build", "units", "exit-codes", "files", "verdict"})
+    EXPECT_NE(r.output.find(topic), std::string::npos) << topic << " missing from\n" << r.output;
+}
+
+TEST(CliHelp, EveryCommandHasAHelpTopic) {
+  for (const std::string& command : kCommands) {
+    const RunResult topic = run_cli("help " + command);
+    EXPECT_EQ(topic.exit_code, 0) << command << ": " << topic.output;
+    EXPECT_EQ(topic.output, run_cli(command + " --help").output) << command;
+  }
+}
+
+TEST(CliHelp, EveryValueOptionStatesItsDefault) {
+  // A value option (FLOAT, INT, UINT, TEXT, ENUM) shows "=default", is REQUIRED, or says "default" in its text.
+  const std::regex value_type("(FLOAT|INT|UINT|TEXT|ENUM)");
+  for (const std::string& command : kCommands) {
+    const std::vector<std::string> blocks = option_blocks(run_cli(command + " --help").output);
+    ASSERT_FALSE(blocks.empty()) << command;
+    for (const std::string& block : blocks) {
+      if (!std::regex_search(block, value_type)) continue;  // a flag
+      // The signature is the first line up to the description, which CLI11 sets off by two or more spaces.
+      const std::string signature = block.substr(0, block.find("  ", 2));
+      const bool has_default = signature.find('=') != std::string::npos ||
+                               block.find("REQUIRED") != std::string::npos ||
+                               block.find("default") != std::string::npos;
+      EXPECT_TRUE(has_default) << command << ": " << block;
+    }
+  }
+}
+
+TEST(CliHelp, TopicPagesAndAllPrint) {
+  EXPECT_NE(run_cli("help exit-codes").output.find("topology guard"), std::string::npos);
+  EXPECT_NE(run_cli("help verdict").output.find("99%"), std::string::npos);
+  EXPECT_NE(run_cli("help units").output.find("Angstrom"), std::string::npos);
+  const RunResult all = run_cli("help all");
+  EXPECT_EQ(all.exit_code, 0);
+  for (const std::string& command : kCommands) EXPECT_NE(all.output.find(command), std::string::npos) << command;
+  EXPECT_NE(all.output.find("--surface-weight"), std::string::npos);
+}
+
+TEST(CliHelp, UnknownTopicIsOneLineAndExit2) {
+  const RunResult r = run_cli("help nonsense");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("no help topic 'nonsense'"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
