@@ -15,6 +15,8 @@ using VH = TriMesh::VertexHandle;
 
 constexpr double kMaxNormalTurnCos = 0.3;
 constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
+constexpr double kHingeWeight = 1000.0;  // weight of the interval hinge relative to Eq 4.7
+constexpr double kHingeMargin = 0.05;    // the hinge starts this share of the interval width inside it
 
 bool troubling(const TriMesh& mesh, TriMesh::EdgeHandle e, double emin, double emax) {
   const double l = geometry::edge_length(mesh, e);
@@ -114,11 +116,18 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     return base[s] + x[2 * i] * t1[s] + x[2 * i + 1] * t2[s];
   };
   auto point_of = [&](const Eigen::VectorXd& x, int index, VH v) { return index >= 0 ? position(x, index) : mesh.point(v); };
-  auto energy = [&](const Eigen::VectorXd& x) {  // Error_b, Eq 4.7
+  // Error_b (Eq 4.7) plus a hinge on the interval: squared lengths outside [lo^2, hi^2] (the interval
+  // shrunk by a small margin) cost kHingeWeight more. Least squares alone may trade a short edge for
+  // another one around a valence defect; the hinge prefers every edge inside.
+  const double margin = kHingeMargin * (emax - emin);
+  const double lo2 = (emin + margin) * (emin + margin), hi2 = (emax - margin) * (emax - margin);
+  auto hinge = [&](double l2) { return l2 < lo2 ? l2 - lo2 : (l2 > hi2 ? l2 - hi2 : 0.0); };
+  auto energy = [&](const Eigen::VectorXd& x) {
     double e = 0;
     for (const Term& t : terms) {
-      const double r = (point_of(x, t.a, t.va) - point_of(x, t.b, t.vb)).sqrnorm() - m2;
-      e += t.weight * r * r;
+      const double l2 = (point_of(x, t.a, t.va) - point_of(x, t.b, t.vb)).sqrnorm();
+      const double r = l2 - m2, h = hinge(l2);
+      e += t.weight * r * r + kHingeWeight * h * h;
     }
     return e;
   };
@@ -133,7 +142,10 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     jtr.setZero();
     for (const Term& t : terms) {
       const Vec3 d = point_of(x, t.a, t.va) - point_of(x, t.b, t.vb);
-      const double r = d.sqrnorm() - m2;
+      const double l2 = d.sqrnorm();
+      const double r = l2 - m2, hr = hinge(l2);
+      const double wj = t.weight + (hr != 0 ? kHingeWeight : 0.0);  // J^T J weight of this edge
+      const double wr = t.weight * r + kHingeWeight * hr;           // J^T r weight
       double g[4];
       int idx[4], c = 0;
       const auto sa = static_cast<std::size_t>(t.a);
@@ -145,8 +157,8 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
         g[c] = -2 * OpenMesh::dot(d, t2[sb]), idx[c++] = 2 * t.b + 1;
       }
       for (int p = 0; p < c; ++p) {
-        jtr[idx[p]] += t.weight * g[p] * r;
-        for (int q = 0; q < c; ++q) jtj(idx[p], idx[q]) += t.weight * g[p] * g[q];
+        jtr[idx[p]] += wr * g[p];
+        for (int q = 0; q < c; ++q) jtj(idx[p], idx[q]) += wj * g[p] * g[q];
       }
     }
     bool improved = false;
