@@ -51,6 +51,31 @@ TEST(Remesher, TorusWithMeanEdge225Converges) { expect_converges(torus(0.0, 2.25
 // Other radii ratios: a thin and a fat tube.
 TEST(Remesher, ThinTorusWithMeanEdge225Converges) { expect_converges(scaled(make_torus({10.0, 2.0, 0.0}), 2.25)); }
 TEST(Remesher, FatTorusWithMeanEdge225Converges) { expect_converges(scaled(make_torus({10.0, 8.0, 0.0}), 2.25)); }
+// regularize() after convergence: valence-lowering flip chains that keep every edge inside.
+TEST(Remesher, RegularizeKeepsTheIntervalAndRaisesRegularity) {
+  TriMesh mesh = sphere(3, 2.25);
+  RemeshSettings settings;
+  ASSERT_TRUE(remesh(mesh, settings).converged);
+  const ValenceStats valence = valence_stats(mesh);
+  EXPECT_GE(valence.percent_regular, 89.0);
+  EXPECT_EQ(valence.percent_eval_gt1, 0.0);
+  // A second call on the converged mesh keeps every edge inside and never raises E_val.
+  auto eval = [](const TriMesh& m) {
+    long sum = 0;
+    for (auto v : m.vertices()) {
+      const long d = ideal_valence(m, v) - static_cast<long>(m.valence(v));
+      sum += d * d;
+    }
+    return sum;
+  };
+  const long before = eval(mesh);
+  const TriMesh target = mesh;
+  const ProjectionTarget projection_target(target);
+  regularize(mesh, projection_target, 2, 1.2, 1.8);
+  const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  EXPECT_LE(eval(mesh), before);
+}
 TEST(Remesher, RefinedSphereWithMeanEdge1Converges) { expect_converges(sphere(4, 1.0)); }
 TEST(Remesher, RefinedTorusWithMeanEdge1Converges) { expect_converges(torus(1.0, 1.0)); }
 

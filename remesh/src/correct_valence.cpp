@@ -1,6 +1,7 @@
 // Section 4.2: valence optimizer with a priority list (Algorithm 2).
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "carbonmesh/remesh/metrics.hpp"
@@ -109,6 +110,184 @@ std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep) {
       ++valence[static_cast<std::size_t>(q.c.idx())];
       ++valence[static_cast<std::size_t>(q.d.idx())];
       ++flips;
+    }
+    total += flips;
+    if (flips == 0) break;
+  }
+  return total;
+}
+
+namespace {
+
+// How many E_val-neutral flips may precede the flip that lowers E_val in a chain (regularize).
+constexpr int kChainDepth = 2;
+
+bool inside(double l, double emin, double emax) { return l >= emin && l <= emax; }
+
+// Every edge at `v` inside [emin, emax] and no face at `v` with an angle under kMinAngle.
+bool star_inside(const TriMesh& mesh, TriMesh::VertexHandle v, double emin, double emax) {
+  constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
+  for (auto w : mesh.vv_range(v))
+    if (!inside((mesh.point(v) - mesh.point(w)).norm(), emin, emax)) return false;
+  for (auto f : mesh.vf_range(v)) {
+    Vec3 a, b, c;
+    geometry::face_points(mesh, f, a, b, c);
+    if (geometry::min_angle(a, b, c) < kMinAngle) return false;
+  }
+  return true;
+}
+
+// Some vertex of the flip quad is irregular (only then can a flip pair lower E_val).
+bool valence_defect(const FlipQuad& q, const std::vector<int>& valence, const std::vector<int>& ideal) {
+  for (auto v : {q.a, q.b, q.c, q.d})
+    if (valence[static_cast<std::size_t>(v.idx())] != ideal[static_cast<std::size_t>(v.idx())]) return true;
+  return false;
+}
+
+}  // namespace
+
+std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax,
+                       int max_passes) {
+  std::vector<int> valence(mesh.n_vertices(), 0), ideal(mesh.n_vertices(), 0);
+  for (auto v : mesh.vertices()) {
+    valence[static_cast<std::size_t>(v.idx())] = static_cast<int>(mesh.valence(v));
+    ideal[static_cast<std::size_t>(v.idx())] = ideal_valence(mesh, v);
+  }
+  auto gain = [&](TriMesh::EdgeHandle e) {
+    if (mesh.status(e).deleted() || mesh.is_boundary(e)) return 0;
+    return improvement(quad(mesh, e), valence, ideal);
+  };
+  auto count_flip = [&](const FlipQuad& q, int sign) {
+    valence[static_cast<std::size_t>(q.a.idx())] -= sign;
+    valence[static_cast<std::size_t>(q.b.idx())] -= sign;
+    valence[static_cast<std::size_t>(q.c.idx())] += sign;
+    valence[static_cast<std::size_t>(q.d.idx())] += sign;
+  };
+  std::vector<std::pair<TriMesh::VertexHandle, Vec3>> moved, saved;
+  std::vector<Vec3> neighbors;
+  std::size_t total = 0;
+  for (int pass = 0; pass < max_passes; ++pass) {
+    struct Entry {
+      int gain;
+      int edge;
+    };
+    std::vector<Entry> list;
+    for (auto e : mesh.edges()) {
+      const int g = gain(e);
+      if (g > 0) list.push_back({g, e.idx()});
+    }
+    std::sort(list.begin(), list.end(), [](const Entry& x, const Entry& y) {
+      return x.gain != y.gain ? x.gain > y.gain : x.edge < y.edge;
+    });
+    std::size_t flips = 0;
+    // Flips `edges` (already flipped in the mesh, quads `quads`) are kept if every edge around is inside,
+    // after relaxing the kn-stars of the new edges and projecting; else everything is restored.
+    auto settle = [&](const std::vector<TriMesh::EdgeHandle>& edges, const std::vector<FlipQuad>& quads) {
+      auto all_inside = [&] {
+        for (const FlipQuad& q : quads)
+          for (auto v : {q.a, q.b, q.c, q.d})
+            if (!star_inside(mesh, v, emin, emax)) return false;
+        return true;
+      };
+      if (all_inside()) return true;
+      saved.clear();
+      for (auto e : edges) {
+        optimize_edge_region(mesh, e, kn, emin, emax, moved);
+        saved.insert(saved.end(), moved.begin(), moved.end());
+        for (const auto& [v, before] : moved) {
+          neighbors.clear();
+          for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
+          mesh.set_point(v, target.project(mesh.point(v), neighbors));
+        }
+      }
+      bool ok = all_inside();
+      for (const auto& [v, before] : saved) ok = ok && star_inside(mesh, v, emin, emax);
+      if (ok) return true;
+      for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
+      for (std::size_t i = edges.size(); i-- > 0;) {
+        mesh.flip(edges[i]);
+        count_flip(quads[i], -1);
+      }
+      return false;
+    };
+    for (const Entry& entry : list) {
+      const TriMesh::EdgeHandle e(entry.edge);
+      if (gain(e) <= 0 || !mesh.is_flip_ok(e)) continue;
+      const FlipQuad q = quad(mesh, e);
+      if (!flip_geometry_ok(mesh, q)) continue;
+      mesh.flip(e);
+      count_flip(q, 1);
+      if (settle({e}, {q})) ++flips;
+    }
+    // Pairs: a flip that leaves E_val unchanged (moving a 5-7 pair) followed by a flip of an edge at one of
+    // its four vertices, together lowering E_val.
+    std::vector<int> zero;
+    for (auto e : mesh.edges())
+      if (!mesh.status(e).deleted() && !mesh.is_boundary(e) && improvement(quad(mesh, e), valence, ideal) == 0 &&
+          valence_defect(quad(mesh, e), valence, ideal))
+        zero.push_back(e.idx());
+    // Depth-first: flip `e` (E_val unchanged), then look at the edges at its quad's vertices for a flip
+    // lowering E_val (kept with the whole chain if settle() accepts), else go one E_val-neutral flip deeper.
+    std::vector<TriMesh::EdgeHandle> chain;
+    std::vector<FlipQuad> chain_quads;
+    std::function<bool(int)> extend = [&](int depth) {
+      const FlipQuad& last = chain_quads.back();
+      TriMesh::EdgeHandle second;
+      int best = 0;
+      std::vector<TriMesh::EdgeHandle> neutral;
+      for (auto v : {last.a, last.b, last.c, last.d})
+        for (auto h : mesh.voh_range(v)) {
+          const auto f = mesh.edge_handle(h);
+          if (mesh.is_boundary(f) || std::find(chain.begin(), chain.end(), f) != chain.end()) continue;
+          const int g = improvement(quad(mesh, f), valence, ideal);
+          if (g > best || (g == best && g > 0 && f.idx() < second.idx())) best = g, second = f;
+          if (g == 0 && depth > 0) neutral.push_back(f);
+        }
+      if (best > 0 && mesh.is_flip_ok(second) && flip_geometry_ok(mesh, quad(mesh, second))) {
+        const FlipQuad q2 = quad(mesh, second);
+        mesh.flip(second);
+        count_flip(q2, 1);
+        chain.push_back(second);
+        chain_quads.push_back(q2);
+        if (settle(chain, chain_quads)) return true;  // settle() undid every flip of the chain otherwise
+        chain.clear();
+        chain_quads.clear();
+        return false;
+      }
+      std::sort(neutral.begin(), neutral.end(), [](auto x, auto y) { return x.idx() < y.idx(); });
+      neutral.erase(std::unique(neutral.begin(), neutral.end()), neutral.end());
+      for (auto f : neutral) {
+        const FlipQuad qf = quad(mesh, f);
+        if (!mesh.is_flip_ok(f) || !flip_geometry_ok(mesh, qf)) continue;
+        mesh.flip(f);
+        count_flip(qf, 1);
+        chain.push_back(f);
+        chain_quads.push_back(qf);
+        const std::size_t size = chain.size();
+        if (extend(depth - 1)) return true;
+        if (chain.size() < size) return false;  // a deeper settle() failed and restored everything
+        mesh.flip(f);
+        count_flip(qf, -1);
+        chain.pop_back();
+        chain_quads.pop_back();
+      }
+      return false;
+    };
+    for (int index : zero) {
+      const TriMesh::EdgeHandle e(index);
+      if (mesh.status(e).deleted() || mesh.is_boundary(e)) continue;
+      const FlipQuad q = quad(mesh, e);
+      if (improvement(q, valence, ideal) != 0 || !mesh.is_flip_ok(e) || !flip_geometry_ok(mesh, q)) continue;
+      mesh.flip(e);
+      count_flip(q, 1);
+      chain.assign(1, e);
+      chain_quads.assign(1, q);
+      if (extend(kChainDepth)) {
+        ++flips;
+      } else if (!chain.empty()) {
+        mesh.flip(e);
+        count_flip(q, -1);
+      }
     }
     total += flips;
     if (flips == 0) break;

@@ -1,6 +1,8 @@
 // Section 4.4: nonlinear optimizer of Error_b (Eq 4.7) around troubling edges, by priority.
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -205,6 +207,25 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
 }
 
 }  // namespace
+
+std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, double emin, double emax,
+                                 std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved) {
+  thread_local std::unique_ptr<Marks> marks;
+  if (!marks || marks->vertex.size() != mesh.n_vertices() || marks->edge.size() != mesh.n_edges())
+    marks = std::make_unique<Marks>(mesh);
+  thread_local EdgeStar star;
+  thread_local std::vector<VH> variables;
+  collect_edge_star(mesh, e, k, star, *marks);
+  variables.clear();
+  moved.clear();
+  for (std::size_t i = 0; i < star.vertices.size() && star.ring[i] < k; ++i)
+    if (!mesh.is_boundary(star.vertices[i])) {
+      variables.push_back(star.vertices[i]);
+      moved.emplace_back(star.vertices[i], mesh.point(star.vertices[i]));
+    }
+  if (!variables.empty()) optimize_region(mesh, variables, emin, emax, 1.0, *marks);
+  return variables.size();
+}
 
 NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double emax) {
   const double m = 0.5 * (emin + emax);

@@ -124,7 +124,6 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       nonlinear_optimizer(mesh, s.kn, s.emin, s.emax);
     else
       low_pass_filter(mesh, s.kl, s.weights, m);
-    { const EdgeStats dbg = edge_stats(mesh, interval); spdlog::debug("DBG before projection {} {}", dbg.long_edges, dbg.short_edges); }
     const double t_project = seconds();
     projection(*projection_target, mesh, /*only_moved=*/true);
     spdlog::debug("iteration {}: {} {:.3f}s, projection {:.3f}s", iteration + 1,
@@ -152,6 +151,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     post_process(mesh, s.kn, s.emin, s.emax);
     result.post_processed = true;
   }
+  // Valence optimisation that keeps every edge inside (regularize in correct_valence.cpp).
+  if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0)
+    spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
   // The topology guard: a final mesh of another surface type is replaced by the best valid one.
   if (const std::optional<Topology> changed = enforce_surface_type(mesh, best)) {
     result.topology_violation = true;

@@ -3,6 +3,7 @@
 // remesh() in remesher.hpp chains them (Algorithm 1); they are public so that tests can check each one.
 #include <cstddef>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -97,6 +98,12 @@ struct NonlinearResult {
 // a troubling edge go through border_optimizer.
 NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double emax);
 
+// Minimises Error_b with the interval hinge over the interior vertices of the k-star of `e` (ring < k;
+// the other vertices stay fixed). `moved` gets those vertices with their positions before. Returns their
+// number.
+std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, double emin, double emax,
+                                 std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved);
+
 // ---- projection.cpp (section 4.5, Algorithm 4) --------------------------------------------------------
 
 // The projection mesh M_p with its spatial index (a CGAL kd-tree over its vertices).
@@ -120,6 +127,16 @@ class ProjectionTarget {
 // forget_projection() removes (call it when the target changes or the mesh is handed back).
 void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false);
 void forget_projection(TriMesh& mesh);
+
+// ---- regularize (correct_valence.cpp): valence optimisation that keeps every edge inside -------------
+
+// After convergence: flips with J_mp > 0 (Eq 4.3) whose new diagonal may be outside [emin, emax] are tried
+// with the kn-star of the new edge relaxed (Error_b with the interval hinge) and projected onto `target`;
+// a flip is kept only if every edge at the moved vertices (and the new edge) is inside [emin, emax] and no
+// face folds, otherwise positions and connectivity are restored. Passes repeat while flips are kept (at
+// most `max_passes`). Returns the number of flips kept.
+std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax,
+                       int max_passes = 10);
 
 // ---- post_process.cpp (section 4.6) -------------------------------------------------------------------
 
