@@ -149,6 +149,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"truncated_vertices.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n", "truncated"},
         BadInput{"truncated_faces.off", off(kTetraVertices, "3 0 2 1\n", 4, 4), "truncated"},
         BadInput{"garbage.off", std::string("OFF\n\x01\x02\xff\xfe\0\0garbage", 20), "binary data"},
+        // Binary bytes quoted in the message are escaped (\xNN), never written to the terminal raw.
+        BadInput{"garbage_word.off", "t\xbd\xc0\x16x 1 2\n", "first word is 't\\xbd\\xc0\\x16x'"},
         BadInput{"garbage.obj", std::string("v 0 0 0\nv \x01\x02\0\xff", 15), "binary data"},
         BadInput{"words.off", "OFF\nthree four 0\n", "not an integer"},
         BadInput{"out_of_range.off", off(kTetraVertices, "3 0 1 7\n", 4, 1), "out of range"},

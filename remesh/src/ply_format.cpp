@@ -116,11 +116,11 @@ class PlyReader {
         if (encoding == "ascii") encoding_ = Encoding::Ascii;
         else if (encoding == "binary_little_endian") encoding_ = Encoding::LittleEndian;
         else if (encoding == "binary_big_endian") encoding_ = Encoding::BigEndian;
-        else fail("unknown PLY format '" + encoding + "'");
+        else fail("unknown PLY format '" + printable(encoding) + "'");
         format_seen = true;
       } else if (keyword == "element") {
         Element e;
-        if (!(words >> e.name >> e.count) || e.count < 0 || e.count > kMaxElements) fail("bad element line '" + line + "'");
+        if (!(words >> e.name >> e.count) || e.count < 0 || e.count > kMaxElements) fail("bad element line '" + printable(line) + "'");
         elements_.push_back(e);
       } else if (keyword == "property") {
         if (elements_.empty()) fail("property before any element");
@@ -129,15 +129,15 @@ class PlyReader {
         words >> type;
         if (type == "list") {
           words >> p.count_type >> p.type >> p.name;
-          if (type_size(p.count_type) == 0 || type_size(p.type) == 0) fail("bad list property '" + line + "'");
+          if (type_size(p.count_type) == 0 || type_size(p.type) == 0) fail("bad list property '" + printable(line) + "'");
         } else {
           p.type = type;
           words >> p.name;
-          if (type_size(p.type) == 0) fail("unknown property type '" + type + "'");
+          if (type_size(p.type) == 0) fail("unknown property type '" + printable(type) + "'");
         }
         elements_.back().properties.push_back(p);
       } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
-        fail("unknown PLY header line '" + line + "'");
+        fail("unknown PLY header line '" + printable(line) + "'");
       }
     }
     if (!format_seen) fail("PLY header without a format line");
@@ -149,7 +149,7 @@ class PlyReader {
       if (!(in_ >> token)) fail("truncated: " + element + " " + std::to_string(index) + " is incomplete");
       char* end = nullptr;
       const double v = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0') fail("'" + token + "' is not a number (" + element + " " + std::to_string(index) + ")");
+      if (end == token.c_str() || *end != '\0') fail("'" + printable(token) + "' is not a number (" + element + " " + std::to_string(index) + ")");
       return v;
     }
     unsigned char bytes[8];

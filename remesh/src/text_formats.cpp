@@ -1,5 +1,7 @@
 #include "text_formats.hpp"
 
+#include "binary_formats.hpp"  // printable
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdlib>
@@ -45,7 +47,7 @@ class LineReader {
     char* end = nullptr;
     errno = 0;
     const double value = std::strtod(begin, &end);
-    if (end == begin || *end != '\0') fail("'" + token + "' is not a number");
+    if (end == begin || *end != '\0') fail("'" + printable(token) + "' is not a number");
     return value;  // NaN and Inf are reported by the mesh validation, with the vertex index
   }
   long integer(const std::string& token) const {
@@ -53,7 +55,7 @@ class LineReader {
     char* end = nullptr;
     errno = 0;
     const long value = std::strtol(begin, &end, 10);
-    if (end == begin || *end != '\0' || errno == ERANGE) fail("'" + token + "' is not an integer");
+    if (end == begin || *end != '\0' || errno == ERANGE) fail("'" + printable(token) + "' is not an integer");
     return value;
   }
   int line() const { return number_; }
@@ -75,9 +77,9 @@ PolygonSoup read_off(const std::filesystem::path& file) {
   std::size_t pos = 0;
   const std::string& keyword = t[0];
   if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
-    reader.fail("not an OFF file (the first word is '" + keyword + "', expected OFF)");
+    reader.fail("not an OFF file (the first word is '" + printable(keyword) + "', expected OFF)");
   if (keyword.find("4") != std::string::npos || keyword.find("n") == 0)
-    reader.fail("unsupported OFF variant '" + keyword + "' (only 3D OFF is read)");
+    reader.fail("unsupported OFF variant '" + printable(keyword) + "' (only 3D OFF is read)");
   pos = 1;
   if (pos >= t.size()) {
     if (!reader.next(t)) reader.fail("truncated: no vertex and face counts");

@@ -78,7 +78,7 @@ void check_options(const BuildOptions& o) {
   if (o.atoms) {
     positive("--atoms", *o.atoms);
     if (*o.atoms < 1 || *o.atoms > kMaxAtoms)
-      throw InputError(fmt::format("--atoms {} is outside [1, {:.0e}] (the largest structure carbonmesh builds)",
+      throw InputError(fmt::format("--atoms {:g} is outside [1, {:.0e}] (the largest structure carbonmesh builds)",
                                    *o.atoms, kMaxAtoms));
   }
   if (o.emin) positive("--emin", *o.emin);
@@ -140,7 +140,12 @@ int run_build(BuildOptions& o) {
                  l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.seconds,
                  l.nonlinear ? "  (nonlinear)" : "");
   };
-  const RemeshResult remeshed = remesh(mesh, o.remesh);
+  RemeshResult remeshed;
+  try {
+    remeshed = remesh(mesh, o.remesh);
+  } catch (const InputError& e) {  // name the input
+    throw InputError(source + ": " + e.what());
+  }
   if (!remeshed.converged)
     spdlog::warn("{} long and {} short edges remain outside [{:.4f}, {:.4f}]", remeshed.long_edges,
                  remeshed.short_edges, scaled.emin, scaled.emax);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -54,7 +55,10 @@ void add_remesh_command(CLI::App& app, Action& action) {
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
   cmd->callback([&action, opt] {
     action = [opt]() -> int {
-      if (opt->emin <= 0) throw InputError(fmt::format("--emin {} must be positive", opt->emin));
+      if (!(opt->emin > 0) || !std::isfinite(opt->emin))
+        throw InputError(fmt::format("--emin {} must be a positive number", opt->emin));
+      if (!(opt->emax > 0) || !std::isfinite(opt->emax))
+        throw InputError(fmt::format("--emax {} must be a positive number", opt->emax));
       if (opt->emin >= opt->emax)
         throw InputError(fmt::format("--emin {} must be smaller than --emax {}", opt->emin, opt->emax));
       if (opt->emin > 2.0 / 3.0 * opt->emax)
@@ -81,7 +85,12 @@ void add_remesh_command(CLI::App& app, Action& action) {
         csv << fmt::format("{},{},{},{:.4f},{:.6f},{:.6f},{:.3f},{}\n", l.iteration, l.long_edges, l.short_edges,
                            l.percent_regular, l.mean, l.std, l.seconds, l.nonlinear ? 1 : 0);
       };
-      const RemeshResult result = remesh(mesh, settings);
+      RemeshResult result;
+      try {
+        result = remesh(mesh, settings);
+      } catch (const InputError& e) {  // e.g. an interval needing too many triangles: name the file
+        throw InputError(opt->in + ": " + e.what());
+      }
       save_mesh(mesh, opt->out);
       if (!opt->log.empty())
         write_atomically(opt->log, [&csv](const std::filesystem::path& tmp) {
