@@ -123,3 +123,20 @@ TEST(BuildCommand, BadInputExitsWithTwo) {
   EXPECT_FALSE(fs::exists(dir / "a" / "summary.json"));
   fs::remove_all(dir);
 }
+
+// Issue 5: on the built-in sphere every bond after the dual optimisation lies within 1.42 +- 0.05 A, the mean
+// is b (the free surface scale absorbs the difference between the remesher's triangle count and area / 2.62).
+TEST(BuildCommand, SmallFullerenesHaveEveryBondWithinTheWindow) {
+  const fs::path dir = temp_dir("window");
+  for (int atoms : {60, 240, 540}) {
+    const fs::path out = dir / std::to_string(atoms);
+    ASSERT_EQ(run("build -o " + out.string() + " --atoms " + std::to_string(atoms) + " --no-report"), 0);
+    const nlohmann::json s = read_json(out / "summary.json");
+    const auto& bonds = s["optimization"]["bonds_after"];
+    EXPECT_GT(bonds["min"].get<double>(), 1.37) << atoms;
+    EXPECT_LT(bonds["max"].get<double>(), 1.47) << atoms;
+    EXPECT_NEAR(bonds["mean"].get<double>(), 1.42, 0.005) << atoms;
+    EXPECT_EQ(s["optimization"]["converged"], true) << atoms;
+  }
+  fs::remove_all(dir);
+}

@@ -168,3 +168,36 @@ TEST(DualOptimize, WithoutIterationsOnlyMeasures) {
   EXPECT_DOUBLE_EQ(r.bonds_before.mean, r.bonds_after.mean);
   EXPECT_NEAR(r.surface_max_before, 0.0, 1e-9);  // centroids lie on their triangles
 }
+
+// The surface is 6% too large for its atom count (as when the remesher makes fewer, larger triangles than
+// area / 2.62 A^2): with the free scale the structure shrinks to bond b, held on s S with s ~ 1/1.06.
+TEST(DualOptimize, FreeScaleFitsTheSizeToTheAtomCount) {
+  const double b = 1.42;
+  TriMesh surface = fullerene_surface(2, b);
+  for (auto v : surface.vertices()) surface.set_point(v, surface.point(v) * 1.06);
+  surface.update_normals();
+  Dual free = build_dual(surface), fixed = build_dual(surface);
+  const DualOptimizeResult r = optimize_dual(free, surface);
+  EXPECT_NEAR(r.bonds_after.mean, b, 0.005);
+  EXPECT_GT(r.bonds_after.min, b - 0.05);
+  EXPECT_LT(r.bonds_after.max, b + 0.05);
+  EXPECT_NEAR(r.surface_scale, 1 / 1.06, 0.02);
+  EXPECT_LT(r.surface_max_after, 0.05);  // distance to s S
+  DualOptimizeSettings keep;
+  keep.free_scale = false;
+  const DualOptimizeResult k = optimize_dual(fixed, surface, keep);
+  EXPECT_EQ(k.surface_scale, 1.0);
+  EXPECT_GT(k.bonds_after.mean, b + 0.03);  // pinned to S, every bond takes the misfit
+}
+
+// The energy criterion stops the tail: C5120 converges in a few hundred iterations with bonds in the window.
+TEST(DualOptimize, LargerFullereneConvergesInFewIterations) {
+  const TriMesh surface = fullerene_surface(4, 1.42);  // C5120
+  Dual dual = build_dual(surface);
+  const DualOptimizeResult r = optimize_dual(dual, surface);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT(r.iterations, 600);
+  EXPECT_GT(r.bonds_after.min, 1.42 - 0.05);
+  EXPECT_LT(r.bonds_after.max, 1.42 + 0.05);
+  EXPECT_GE(r.evaluations, r.iterations);
+}

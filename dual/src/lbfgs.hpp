@@ -12,10 +12,15 @@ struct LbfgsSettings {
   int memory = 8;
   double gradient_tolerance = 1e-6;  // on the largest gradient component
   double max_step = 0.2;             // largest move of one coordinate in one line search trial
+  // Also converged when the energy fell by less than energy_tolerance * |E| over the last energy_window
+  // iterations (0: off): the tail of a stiff problem polishes little for many iterations.
+  double energy_tolerance = 0;
+  int energy_window = 10;
 };
 
 struct LbfgsResult {
   int iterations = 0;
+  int evaluations = 0;  // calls of f
   bool converged = false;
   double energy = 0;
   double gradient_max = 0;
@@ -27,8 +32,10 @@ LbfgsResult minimize_lbfgs(Eigen::VectorXd& x, Function&& f, const LbfgsSettings
   LbfgsResult result;
   Eigen::VectorXd g(x.size()), g_new(x.size()), x_new(x.size()), d(x.size());
   double e = f(x, g);
+  result.evaluations = 1;
   std::deque<Eigen::VectorXd> s_hist, y_hist;
   std::deque<double> rho_hist;
+  std::deque<double> energies{e};  // the last energy_window + 1 energies
   for (int it = 0; it < settings.max_iterations; ++it) {
     result.gradient_max = x.size() ? g.cwiseAbs().maxCoeff() : 0.0;
     if (result.gradient_max < settings.gradient_tolerance) {
@@ -62,6 +69,7 @@ LbfgsResult minimize_lbfgs(Eigen::VectorXd& x, Function&& f, const LbfgsSettings
     for (int trial = 0; trial < 50; ++trial) {
       x_new = x + step * d;
       e_new = f(x_new, g_new);
+      ++result.evaluations;
       if (e_new <= e + 1e-4 * step * slope) {
         accepted = true;
         break;
@@ -87,6 +95,15 @@ LbfgsResult minimize_lbfgs(Eigen::VectorXd& x, Function&& f, const LbfgsSettings
     g.swap(g_new);
     e = e_new;
     result.iterations = it + 1;
+    if (settings.energy_tolerance > 0) {
+      energies.push_back(e);
+      if (static_cast<int>(energies.size()) > settings.energy_window + 1) energies.pop_front();
+      if (static_cast<int>(energies.size()) == settings.energy_window + 1 &&
+          energies.front() - e <= settings.energy_tolerance * std::abs(e)) {
+        result.converged = true;
+        break;
+      }
+    }
   }
   result.energy = e;
   result.gradient_max = x.size() ? g.cwiseAbs().maxCoeff() : 0.0;

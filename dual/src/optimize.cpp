@@ -15,77 +15,89 @@
 namespace carbonmesh {
 namespace {
 
-struct DistanceFigures {
-  double max = 0, rms = 0;
-};
-
-DistanceFigures surface_distances(const detail::SurfaceProjector& projector, const std::vector<Vec3>& points) {
-  std::vector<Vec3> closest;
-  projector.closest_points(points, closest);
-  DistanceFigures out;
-  double sum2 = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const double d2 = (points[i] - closest[i]).sqrnorm();
-    out.max = std::max(out.max, std::sqrt(d2));
-    sum2 += d2;
-  }
-  out.rms = points.empty() ? 0.0 : std::sqrt(sum2 / static_cast<double>(points.size()));
-  return out;
-}
-
-// The energy of optimize.hpp over the 3n coordinates.
+// The unknowns are y (3n coordinates) and, with a free scale, u: the atoms sit at x = c + s (y - c) with
+// s = 1 + u / radius, c the area centroid of S and radius the RMS distance of S from c. Bond lengths are s |y_i - y_j|,
+// angles do not depend on s, and the distance of x to s S is s d(y, S). So a change of u moves every atom and
+// the surface together, and the size of the structure is one well-conditioned direction of the minimisation
+// (holding atoms on a moving surface through the surface springs instead converges very slowly).
 class DualEnergy {
  public:
   DualEnergy(const std::vector<AtomPair>& bonds, const std::vector<AtomTriple>& angles,
-             const std::vector<double>& target_cosines, const detail::SurfaceProjector& projector,
-             const DualOptimizeSettings& s)
-      : bonds_(bonds), angles_(angles), target_cosines_(target_cosines), projector_(projector), s_(s) {}
+             const std::vector<double>& target_cosines, const detail::SurfaceProjector& projector, double radius,
+             std::vector<int> faces, const DualOptimizeSettings& s)
+      : bonds_(bonds), angles_(angles), target_cosines_(target_cosines), projector_(projector), radius_(radius),
+        faces_(std::move(faces)), s_(s) {}
+
+  double scale(const Eigen::VectorXd& x) const {
+    return s_.free_scale ? 1.0 + x[x.size() - 1] / radius_ : 1.0;
+  }
+  const std::vector<int>& faces() const { return faces_; }
 
   double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
-    const std::size_t n = static_cast<std::size_t>(x.size() / 3);
+    const std::size_t n = faces_.size();
     g.setZero(x.size());
-    auto p = [&](int i) { return Eigen::Vector3d(x.segment<3>(3 * i)); };
-    double e = 0;
+    const double* px = x.data();
+    double* pg = g.data();
+    double e = 0, gs = 0;  // gs = dE/ds
     const double b = s_.bond;
+    const double s = scale(x);
     for (const auto& bond : bonds_) {
-      const Eigen::Vector3d r = p(bond[0]) - p(bond[1]);
-      const double length = r.norm();
+      const double* p = px + 3 * bond[0];
+      const double* q = px + 3 * bond[1];
+      const double r0 = p[0] - q[0], r1 = p[1] - q[1], r2 = p[2] - q[2];
+      const double length = std::sqrt(r0 * r0 + r1 * r1 + r2 * r2);
       if (length == 0) continue;
-      const double diff = length - b;
+      const double diff = s * length - b;
       e += diff * diff;
-      const Eigen::Vector3d d = (2 * diff / length) * r;
-      g.segment<3>(3 * bond[0]) += d;
-      g.segment<3>(3 * bond[1]) -= d;
+      gs += 2 * diff * length;
+      const double k = 2 * diff * s / length;
+      double* gp = pg + 3 * bond[0];
+      double* gq = pg + 3 * bond[1];
+      gp[0] += k * r0, gp[1] += k * r1, gp[2] += k * r2;
+      gq[0] -= k * r0, gq[1] -= k * r1, gq[2] -= k * r2;
     }
     const double wa = s_.angle_weight * b * b;
     if (wa > 0) {
       for (std::size_t a = 0; a < angles_.size(); ++a) {
         const AtomTriple& t = angles_[a];
-        const Eigen::Vector3d c = p(t[1]);
-        const Eigen::Vector3d u = p(t[0]) - c, v = p(t[2]) - c;
-        const double lu = u.norm(), lv = v.norm();
-        if (lu == 0 || lv == 0) continue;
-        const double cosine = u.dot(v) / (lu * lv);
+        const Eigen::Map<const Eigen::Vector3d> c(px + 3 * t[1]);
+        const Eigen::Vector3d u = Eigen::Map<const Eigen::Vector3d>(px + 3 * t[0]) - c;
+        const Eigen::Vector3d v = Eigen::Map<const Eigen::Vector3d>(px + 3 * t[2]) - c;
+        const double lu2 = u.squaredNorm(), lv2 = v.squaredNorm();
+        if (lu2 == 0 || lv2 == 0) continue;
+        const double inv = 1.0 / std::sqrt(lu2 * lv2);
+        const double cosine = u.dot(v) * inv;
         const double diff = cosine - target_cosines_[a];
         e += wa * diff * diff;
         const double de = 2 * wa * diff;
-        const Eigen::Vector3d du = de * (v / (lu * lv) - cosine * u / (lu * lu));
-        const Eigen::Vector3d dv = de * (u / (lu * lv) - cosine * v / (lv * lv));
-        g.segment<3>(3 * t[0]) += du;
-        g.segment<3>(3 * t[2]) += dv;
-        g.segment<3>(3 * t[1]) -= du + dv;
+        const Eigen::Vector3d du = de * (v * inv - (cosine / lu2) * u);
+        const Eigen::Vector3d dv = de * (u * inv - (cosine / lv2) * v);
+        Eigen::Map<Eigen::Vector3d>(pg + 3 * t[0]) += du;
+        Eigen::Map<Eigen::Vector3d>(pg + 3 * t[2]) += dv;
+        Eigen::Map<Eigen::Vector3d>(pg + 3 * t[1]) -= du + dv;
       }
     }
     if (s_.surface_weight > 0) {
-      points_.resize(n);
-      for (std::size_t i = 0; i < n; ++i) points_[i] = Vec3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-      projector_.closest_points(points_, closest_);
-      for (std::size_t i = 0; i < n; ++i) {
-        const Vec3 d = points_[i] - closest_[i];
-        e += s_.surface_weight * d.sqrnorm();
-        for (int k = 0; k < 3; ++k) g[static_cast<Eigen::Index>(3 * i + k)] += 2 * s_.surface_weight * d[k];
+      const double w = s_.surface_weight * s * s;
+      const long count = static_cast<long>(n);
+      // Per atom independent (the walk starts at that atom's own face): deterministic in parallel; the sum is
+      // reduced in a fixed order below. Parallel only for large structures: on a loaded machine a parallel
+      // region per evaluation costs more than a small loop.
+      partial_.resize(n);
+#pragma omp parallel for schedule(static) if (count >= 20000)
+      for (long i = 0; i < count; ++i) {
+        const std::size_t k = static_cast<std::size_t>(i);
+        const Vec3 p(px[3 * i], px[3 * i + 1], px[3 * i + 2]);
+        const Vec3 d = p - projector_.closest_point_near(p, faces_[k]);
+        partial_[k] = d.sqrnorm();
+        for (int j = 0; j < 3; ++j) pg[3 * i + j] += 2 * w * d[j];
       }
+      double d2 = 0;
+      for (std::size_t k = 0; k < n; ++k) d2 += partial_[k];
+      e += w * d2;
+      gs += 2 * s_.surface_weight * s * d2;
     }
+    if (s_.free_scale) pg[x.size() - 1] = gs / radius_;
     return e;
   }
 
@@ -94,8 +106,10 @@ class DualEnergy {
   const std::vector<AtomTriple>& angles_;
   const std::vector<double>& target_cosines_;
   const detail::SurfaceProjector& projector_;
+  double radius_;
+  std::vector<int> faces_;  // the surface face each atom was last projected to (the walk's start)
   const DualOptimizeSettings& s_;
-  std::vector<Vec3> points_, closest_;
+  std::vector<double> partial_;
 };
 
 // The cosine of the target of every angle: the interior angle of a regular polygon of the size of the closed
@@ -121,6 +135,28 @@ std::vector<double> target_cosines(const Dual& dual, const std::vector<AtomTripl
   return out;
 }
 
+// Area centroid of the surface and the area-weighted RMS distance of its face centroids from it.
+void centre_and_radius(const TriMesh& surface, Vec3& centre, double& radius) {
+  double area = 0;
+  Vec3 sum(0, 0, 0);
+  for (auto f : surface.faces()) {
+    auto it = surface.cfv_iter(f);
+    const Vec3 a = surface.point(*it++), b = surface.point(*it++), c = surface.point(*it);
+    const double w = 0.5 * OpenMesh::cross(b - a, c - a).norm();
+    area += w;
+    sum += w * (a + b + c) / 3.0;
+  }
+  centre = area > 0 ? sum / area : Vec3(0, 0, 0);
+  double r2 = 0;
+  for (auto f : surface.faces()) {
+    auto it = surface.cfv_iter(f);
+    const Vec3 a = surface.point(*it++), b = surface.point(*it++), c = surface.point(*it);
+    const double w = 0.5 * OpenMesh::cross(b - a, c - a).norm();
+    r2 += w * ((a + b + c) / 3.0 - centre).sqrnorm();
+  }
+  radius = area > 0 && r2 > 0 ? std::sqrt(r2 / area) : 1.0;
+}
+
 }  // namespace
 
 DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualOptimizeSettings& settings) {
@@ -129,18 +165,29 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
     throw std::invalid_argument("optimize_dual: weights must not be negative");
   const auto t0 = std::chrono::steady_clock::now();
   const detail::SurfaceProjector projector(surface);
+  Vec3 centre;
+  double radius = 1;
+  centre_and_radius(surface, centre, radius);
   const auto angles = bond_angles(dual.atoms(), dual.bonds);
   DualOptimizeResult r;
   std::vector<Vec3> positions = dual.positions();
   r.bonds_before = sample_stats(bond_lengths(positions, dual.bonds));
   r.angles_before = sample_stats(angle_degrees(positions, angles));
-  r.surface_max_before = surface_distances(projector, positions).max;
-
-  Eigen::VectorXd x(static_cast<Eigen::Index>(3 * positions.size()));
+  // Seat every atom on its nearest face (the one global query per atom).
+  std::vector<Vec3> closest;
+  std::vector<int> faces;
+  projector.closest_points(positions, closest, faces);
   for (std::size_t i = 0; i < positions.size(); ++i)
+    r.surface_max_before = std::max(r.surface_max_before, (positions[i] - closest[i]).norm());
+
+  const std::size_t n = positions.size();
+  const Eigen::Index extra = settings.free_scale ? 1 : 0;
+  Eigen::VectorXd x(static_cast<Eigen::Index>(3 * n) + extra);
+  for (std::size_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) x[static_cast<Eigen::Index>(3 * i + k)] = positions[i][k];
+  if (extra) x[x.size() - 1] = 0;
   const std::vector<double> targets = target_cosines(dual, angles);
-  DualEnergy energy(dual.bonds, angles, targets, projector, settings);
+  DualEnergy energy(dual.bonds, angles, targets, projector, radius, std::move(faces), settings);
   Eigen::VectorXd g;
   r.energy_before = energy(x, g);
 
@@ -149,29 +196,39 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   ls.memory = settings.memory;
   ls.gradient_tolerance = settings.gradient_tolerance;
   ls.max_step = 0.1 * settings.bond;
+  ls.energy_tolerance = settings.energy_tolerance;
   const detail::LbfgsResult lr = detail::minimize_lbfgs(x, energy, ls);
   r.iterations = lr.iterations;
+  r.evaluations = lr.evaluations;
   r.converged = lr.converged;
   r.energy_after = lr.energy;
+  r.surface_scale = energy.scale(x);
 
-  for (std::size_t i = 0; i < positions.size(); ++i)
-    positions[i] = Vec3(x[static_cast<Eigen::Index>(3 * i)], x[static_cast<Eigen::Index>(3 * i + 1)],
-                        x[static_cast<Eigen::Index>(3 * i + 2)]);
+  // Distances to s S (s times the distance of y to S) from the faces the optimiser ended on; then x.
+  const double s = r.surface_scale;
+  std::vector<int> last = energy.faces();
+  double sum2 = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 y(x[static_cast<Eigen::Index>(3 * i)], x[static_cast<Eigen::Index>(3 * i + 1)],
+                 x[static_cast<Eigen::Index>(3 * i + 2)]);
+    const double d2 = s * s * (y - projector.closest_point_near(y, last[i])).sqrnorm();
+    r.surface_max_after = std::max(r.surface_max_after, std::sqrt(d2));
+    sum2 += d2;
+    positions[i] = centre + (y - centre) * s;
+  }
+  r.surface_rms_after = n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
   dual.set_positions(positions);
   dual.mesh.update_face_normals();
   r.bonds_after = sample_stats(bond_lengths(positions, dual.bonds));
   r.angles_after = sample_stats(angle_degrees(positions, angles));
-  const DistanceFigures after = surface_distances(projector, positions);
-  r.surface_max_after = after.max;
-  r.surface_rms_after = after.rms;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  spdlog::info("dual optimisation: {} iterations ({}), bonds {:.4f}..{:.4f} (mean {:.4f}, std {:.4f}) -> "
-               "{:.4f}..{:.4f} (mean {:.4f}, std {:.4f}), angles {:.2f}..{:.2f} -> {:.2f}..{:.2f} deg, "
-               "surface distance max {:.4f}",
-               r.iterations, r.converged ? "converged" : "not converged", r.bonds_before.min, r.bonds_before.max,
-               r.bonds_before.mean, r.bonds_before.std, r.bonds_after.min, r.bonds_after.max, r.bonds_after.mean,
-               r.bonds_after.std, r.angles_before.min, r.angles_before.max, r.angles_after.min, r.angles_after.max,
-               r.surface_max_after);
+  spdlog::info("dual optimisation: {} iterations, {} evaluations ({}), bonds {:.4f}..{:.4f} (mean {:.4f}, std "
+               "{:.4f}) -> {:.4f}..{:.4f} (mean {:.4f}, std {:.4f}), angles {:.2f}..{:.2f} -> {:.2f}..{:.2f} deg, "
+               "surface scale {:.4f}, distance max {:.4f}, {:.2f} s",
+               r.iterations, r.evaluations, r.converged ? "converged" : "not converged", r.bonds_before.min,
+               r.bonds_before.max, r.bonds_before.mean, r.bonds_before.std, r.bonds_after.min, r.bonds_after.max,
+               r.bonds_after.mean, r.bonds_after.std, r.angles_before.min, r.angles_before.max, r.angles_after.min,
+               r.angles_after.max, r.surface_scale, r.surface_max_after, r.seconds);
   return r;
 }
 
@@ -183,9 +240,11 @@ nlohmann::json to_json(const DualOptimizeResult& r) {
           {"surface_distance_max_before", r.surface_max_before},
           {"surface_distance_max_after", r.surface_max_after},
           {"surface_distance_rms_after", r.surface_rms_after},
+          {"surface_scale", r.surface_scale},
           {"energy_before", r.energy_before},
           {"energy_after", r.energy_after},
           {"iterations", r.iterations},
+          {"evaluations", r.evaluations},
           {"converged", r.converged},
           {"seconds", r.seconds}};
 }

@@ -5,6 +5,8 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <algorithm>
+
 namespace carbonmesh::detail {
 namespace {
 using Kernel = CGAL::Simple_cartesian<double>;
@@ -13,43 +15,137 @@ using Triangle = Kernel::Triangle_3;
 using Triangles = std::vector<Triangle>;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+// Where on a triangle (a, b, c) the closest point lies: its interior, a corner, or an edge (ab, bc, ca).
+enum Region : int { Inside = 0, CornerA, CornerB, CornerC, EdgeAB, EdgeBC, EdgeCA };
+
+// Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5) and its region.
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, int& region) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = OpenMesh::dot(ab, ap), d2 = OpenMesh::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return region = CornerA, a;
+  const Vec3 bp = p - b;
+  const double d3 = OpenMesh::dot(ab, bp), d4 = OpenMesh::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return region = CornerB, b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return region = EdgeAB, a + ab * (d1 / (d1 - d3));
+  const Vec3 cp = p - c;
+  const double d5 = OpenMesh::dot(ab, cp), d6 = OpenMesh::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return region = CornerC, c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return region = EdgeCA, a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return region = EdgeBC, b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1.0 / (va + vb + vc);
+  region = Inside;
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
 }  // namespace
 
 struct SurfaceProjector::Impl {
   Triangles triangles;
   Tree tree;
+  std::vector<std::array<Vec3, 3>> corners;  // per face
+  std::vector<std::array<int, 3>> across;    // per face: the face across edge ab, bc, ca (-1 at a border)
+  std::vector<std::array<int, 3>> vertex;    // per face: its corner vertices
+  std::vector<int> star_start, star;         // CSR: the faces around each vertex
 };
 
 SurfaceProjector::SurfaceProjector(const TriMesh& surface) : impl_(std::make_unique<Impl>()) {
   auto to_point = [](const Vec3& p) { return Point(p[0], p[1], p[2]); };
-  impl_->triangles.reserve(surface.n_faces());
+  Impl& m = *impl_;
+  // Faces in index order, deleted ones skipped; `index` maps mesh face -> compact index.
+  std::vector<int> index(surface.n_faces(), -1);
+  std::vector<TriMesh::FaceHandle> handles;
   for (auto f : surface.faces()) {
-    auto it = surface.cfv_iter(f);
-    const Point a = to_point(surface.point(*it++));
-    const Point b = to_point(surface.point(*it++));
-    const Point c = to_point(surface.point(*it));
-    impl_->triangles.emplace_back(a, b, c);
+    index[static_cast<std::size_t>(f.idx())] = static_cast<int>(handles.size());
+    handles.push_back(f);
   }
-  impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
-  impl_->tree.build();
-  impl_->tree.accelerate_distance_queries();
+  m.triangles.reserve(handles.size());
+  m.corners.reserve(handles.size());
+  m.across.reserve(handles.size());
+  m.vertex.reserve(handles.size());
+  for (auto f : handles) {
+    std::array<Vec3, 3> p;
+    std::array<int, 3> across{-1, -1, -1}, vertex{};
+    int k = 0;
+    for (auto h : surface.fh_range(f)) {
+      if (k == 3) break;
+      const auto v = surface.from_vertex_handle(h);
+      p[k] = surface.point(v);
+      vertex[k] = v.idx();
+      const auto g = surface.opposite_face_handle(h);
+      if (g.is_valid()) across[k] = index[static_cast<std::size_t>(g.idx())];
+      ++k;
+    }
+    m.corners.push_back(p);
+    m.across.push_back(across);
+    m.vertex.push_back(vertex);
+    m.triangles.emplace_back(to_point(p[0]), to_point(p[1]), to_point(p[2]));
+  }
+  m.star_start.assign(surface.n_vertices() + 1, 0);
+  for (const auto& v : m.vertex)
+    for (int u : v) ++m.star_start[static_cast<std::size_t>(u) + 1];
+  for (std::size_t v = 0; v < surface.n_vertices(); ++v) m.star_start[v + 1] += m.star_start[v];
+  m.star.resize(static_cast<std::size_t>(m.star_start.back()));
+  std::vector<int> fill(m.star_start.begin(), m.star_start.end() - 1);
+  for (std::size_t f = 0; f < m.vertex.size(); ++f)
+    for (int u : m.vertex[f]) m.star[static_cast<std::size_t>(fill[static_cast<std::size_t>(u)]++)] = static_cast<int>(f);
+  m.tree.insert(m.triangles.begin(), m.triangles.end());
+  m.tree.build();
+  m.tree.accelerate_distance_queries();
 }
 
 SurfaceProjector::~SurfaceProjector() = default;
 
-void SurfaceProjector::closest_points(const std::vector<Vec3>& points, std::vector<Vec3>& closest) const {
-  const bool hints = closest.size() == points.size();
+std::size_t SurfaceProjector::faces() const { return impl_->corners.size(); }
+
+void SurfaceProjector::closest_points(const std::vector<Vec3>& points, std::vector<Vec3>& closest,
+                                      std::vector<int>& faces) const {
   closest.resize(points.size());
-  const Tree& tree = impl_->tree;
+  faces.resize(points.size());
+  const Impl& m = *impl_;
   const long n = static_cast<long>(points.size());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const Vec3& p = points[static_cast<std::size_t>(i)];
-    Vec3& c = closest[static_cast<std::size_t>(i)];
-    const Point q = hints ? tree.closest_point(Point(p[0], p[1], p[2]), Point(c[0], c[1], c[2]))
-                          : tree.closest_point(Point(p[0], p[1], p[2]));
-    c = Vec3(q.x(), q.y(), q.z());
+    const auto [q, it] = m.tree.closest_point_and_primitive(Point(p[0], p[1], p[2]));
+    closest[static_cast<std::size_t>(i)] = Vec3(q.x(), q.y(), q.z());
+    faces[static_cast<std::size_t>(i)] = static_cast<int>(it - m.triangles.begin());
   }
+}
+
+Vec3 SurfaceProjector::closest_point_near(const Vec3& q, int& face) const {
+  const Impl& m = *impl_;
+  int region = Inside;
+  const auto& t = m.corners[static_cast<std::size_t>(face)];
+  Vec3 best = closest_on_triangle(q, t[0], t[1], t[2], region);
+  double best_d2 = (q - best).sqrnorm();
+  // Walk: from a corner to the faces around it, from an edge across it, while strictly nearer (so it cannot
+  // cycle; among equals the first candidate, so it is deterministic).
+  for (int step = 0; step < 64 && region != Inside; ++step) {
+    const std::size_t f = static_cast<std::size_t>(face);
+    int next = -1, next_region = Inside;
+    Vec3 next_point;
+    auto consider = [&](int g) {
+      if (g < 0 || g == face) return;
+      const auto& u = m.corners[static_cast<std::size_t>(g)];
+      int r = Inside;
+      const Vec3 c = closest_on_triangle(q, u[0], u[1], u[2], r);
+      const double d2 = (q - c).sqrnorm();
+      if (d2 < best_d2 * (1 - 1e-12)) best_d2 = d2, next = g, next_point = c, next_region = r;
+    };
+    if (region >= EdgeAB) {
+      consider(m.across[f][region - EdgeAB]);
+    } else {
+      const std::size_t v = static_cast<std::size_t>(m.vertex[f][region - CornerA]);
+      for (int k = m.star_start[v]; k < m.star_start[v + 1]; ++k) consider(m.star[static_cast<std::size_t>(k)]);
+    }
+    if (next < 0) break;
+    face = next, best = next_point, region = next_region;
+  }
+  return best;
 }
 
 }  // namespace carbonmesh::detail
