@@ -121,11 +121,6 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
     std::fill(face_stamp.begin(), face_stamp.end(), 0u);
     stamp = 1;
   }
-  struct Candidate {
-    double distance;
-    int face;
-    Vec3 point;
-  };
   thread_local std::vector<std::pair<double, int>> bounded;  // (lower bound of |V - P|, face)
   bounded.clear();
   for (auto it = search.begin(); it != search.end(); ++it) {
@@ -149,40 +144,33 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
                                      t.points[static_cast<std::size_t>(tri[1])],
                                      t.points[static_cast<std::size_t>(tri[2])]);
   };
-  auto full_score = [&](const Vec3& p) {
-    double score = (v - p).norm();
-    for (std::size_t j = 0; j < neighbors.size(); ++j) score += std::abs(neighbor_lengths[j] - (p - neighbors[j]).norm());
-    return score;
-  };
-  // The score of the face with the smallest bound bounds the best score from above: faces whose distance
-  // bound reaches it cannot win and are not projected onto.
-  double bound = std::numeric_limits<double>::infinity();
-  if (!bounded.empty()) {
-    const auto first = *std::min_element(bounded.begin(), bounded.end());
-    bound = full_score(closest(first.second));
-  }
-  thread_local std::vector<Candidate> projections;
-  projections.clear();
-  for (const auto& [lb, f] : bounded) {
-    if (lb > bound) continue;
-    const Vec3 p = closest(f);
-    projections.push_back({(v - p).norm(), f, p});
-  }
-  std::sort(projections.begin(), projections.end(), [](const Candidate& a, const Candidate& b) {
-    return a.distance != b.distance ? a.distance < b.distance : a.face < b.face;
-  });
+  // Faces in order of their distance bound, projected onto lazily: a face whose bound exceeds the best
+  // score so far cannot win (|V - P| <= score), and neither can any later one. The winner is the same as
+  // scoring every candidate: the smallest score, ties to the smaller |V - P|, then the smaller face index.
+  // (Selection instead of a sort: usually only the first one or two faces are projected onto.)
   Vec3 best = v;
-  double best_score = std::numeric_limits<double>::infinity();
-  for (const Candidate& c : projections) {
-    // |V - P| bounds the score from below: no later candidate can win.
-    if (c.distance >= best_score) break;
+  double best_score = std::numeric_limits<double>::infinity(), best_distance = best_score;
+  int best_face = -1;
+  for (std::size_t next = 0; next < bounded.size(); ++next) {
+    std::size_t pick = next;
+    for (std::size_t j = next + 1; j < bounded.size(); ++j)
+      if (bounded[j] < bounded[pick]) pick = j;
+    std::swap(bounded[next], bounded[pick]);
+    const auto [lb, f] = bounded[next];
+    if (lb > best_score) break;
+    const Vec3 p = closest(f);
+    const double distance = (v - p).norm();
+    if (distance > best_score) continue;
     // Neighbourhood-aware distance (section 4.5): |V - P| plus how much the edges to the neighbours change.
-    double score = c.distance;
-    for (std::size_t j = 0; j < neighbors.size() && score < best_score; ++j)
-      score += std::abs(neighbor_lengths[j] - (c.point - neighbors[j]).norm());
-    if (score < best_score) {
+    double score = distance;
+    for (std::size_t j = 0; j < neighbors.size() && score <= best_score; ++j)
+      score += std::abs(neighbor_lengths[j] - (p - neighbors[j]).norm());
+    if (score < best_score ||
+        (score == best_score && (distance < best_distance || (distance == best_distance && f < best_face)))) {
       best_score = score;
-      best = c.point;
+      best_distance = distance;
+      best_face = f;
+      best = p;
     }
   }
   return best;
