@@ -52,6 +52,51 @@ TEST(Remesher, TorusWithMeanEdge225Converges) { expect_converges(torus(0.0, 2.25
 TEST(Remesher, ThinTorusWithMeanEdge225Converges) { expect_converges(scaled(make_torus({10.0, 2.0, 0.0}), 2.25)); }
 TEST(Remesher, FatTorusWithMeanEdge225Converges) { expect_converges(scaled(make_torus({10.0, 8.0, 0.0}), 2.25)); }
 // regularize() after convergence: valence-lowering flip chains that keep every edge inside.
+// A sphere with five holes (five borders, like a raw scan): the nonlinear optimizer moves border vertices
+// along their border curves, so edges at border vertices of low valence also get inside.
+TEST(Remesher, SphereWithFiveHolesConverges) {
+  TriMesh mesh = sphere(3, 2.25);
+  std::vector<TriMesh::FaceHandle> faces;
+  // The faces around the vertices farthest along five axis directions: five holes far apart.
+  for (const Vec3& d : {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)}) {
+    TriMesh::VertexHandle c;
+    for (auto v : mesh.vertices())
+      if (!c.is_valid() || OpenMesh::dot(mesh.point(v), d) > OpenMesh::dot(mesh.point(c), d)) c = v;
+    for (auto f : mesh.vf_range(c)) faces.push_back(f);
+  }
+  for (auto f : faces) mesh.delete_face(f, true);
+  mesh.garbage_collection();
+  ASSERT_EQ(topology(mesh).boundary_loops, 5u);
+  expect_converges(mesh);
+  EXPECT_EQ(topology(mesh).boundary_loops, 5u);
+}
+
+// Border vertices of a flat grid stay on its straight border when the nonlinear optimizer moves them.
+TEST(NonlinearOptimizer, MovesBorderVerticesAlongTheBorder) {
+  TriMesh mesh;
+  const int n = 8;
+  std::vector<TriMesh::VertexHandle> v;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) v.push_back(mesh.add_vertex(Vec3(1.5 * i + 0.75 * (j % 2), 1.3 * j, 0)));
+  auto at = [&](int i, int j) { return v[static_cast<std::size_t>(j * n + i)]; };
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      if (j % 2 == 0) {
+        mesh.add_face(at(i, j), at(i + 1, j), at(i, j + 1));
+        mesh.add_face(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+      } else {
+        mesh.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      }
+    }
+  mesh.set_point(at(3, 0), Vec3(1.5 * 3 - 0.45, 0, 0));  // a short and a long border edge
+  ASSERT_GT(edge_stats(mesh, {1.2, 1.8}).long_edges + edge_stats(mesh, {1.2, 1.8}).short_edges, 0u);
+  nonlinear_optimizer(mesh, 2, 1.2, 1.8);
+  const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  for (int i = 0; i < n; ++i) EXPECT_NEAR(mesh.point(at(i, 0))[1], 0.0, 1e-12);
+}
+
 TEST(Remesher, RegularizeKeepsTheIntervalAndRaisesRegularity) {
   TriMesh mesh = sphere(3, 2.25);
   RemeshSettings settings;

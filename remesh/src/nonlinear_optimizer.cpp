@@ -1,6 +1,7 @@
 // Section 4.4: nonlinear optimizer of Error_b (Eq 4.7) around troubling edges, by priority.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -23,6 +24,42 @@ constexpr double kHingeMargin = 0.05;    // the hinge starts this share of the i
 bool troubling(const TriMesh& mesh, TriMesh::EdgeHandle e, double emin, double emax) {
   const double l = geometry::edge_length(mesh, e);
   return l < emin || l > emax;
+}
+
+// A border vertex moves along the quadratic through its two border neighbours (section 4.3.2), with the
+// chord-length parameter t: curve(0) is its position, t in [ta/2, tb/2] (the middle halves of its border
+// edges, as in border_optimizer).
+struct BorderCurve {
+  Vec3 a, p, b;
+  double ta = 0, tb = 0;
+  Vec3 at(double t) const {
+    const double la = t * (t - tb) / (ta * (ta - tb));
+    const double lp = (t - ta) * (t - tb) / (ta * tb);
+    const double lb = (t - ta) * t / (tb * (tb - ta));
+    return la * a + lp * p + lb * b;
+  }
+  Vec3 derivative(double t) const {
+    const double la = (2 * t - tb) / (ta * (ta - tb));
+    const double lp = (2 * t - ta - tb) / (ta * tb);
+    const double lb = (2 * t - ta) / (tb * (tb - ta));
+    return la * a + lp * p + lb * b;
+  }
+  bool contains(double t) const { return t >= 0.5 * ta && t <= 0.5 * tb; }
+};
+
+// The border curve of `v`; false when `v` is not on exactly one border or its border neighbours coincide.
+bool border_curve(const TriMesh& mesh, VH v, BorderCurve& c) {
+  TriMesh::HalfedgeHandle out;
+  int count = 0;
+  for (auto h : mesh.voh_range(v))
+    if (mesh.is_boundary(h)) out = h, ++count;
+  if (count != 1) return false;
+  const auto in = mesh.prev_halfedge_handle(out);
+  const VH va = mesh.from_vertex_handle(in), vb = mesh.to_vertex_handle(out);
+  if (va == vb) return false;
+  c.a = mesh.point(va), c.p = mesh.point(v), c.b = mesh.point(vb);
+  c.ta = -(c.p - c.a).norm(), c.tb = (c.b - c.p).norm();
+  return c.ta < 0 && c.tb > 0;
 }
 
 // Vertices within `k` rings of the two ends of an edge (ring 0: the ends), in BFS order.
@@ -107,15 +144,37 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     }
   }
   std::vector<Vec3> base(static_cast<std::size_t>(nv)), t1(static_cast<std::size_t>(nv)), t2(static_cast<std::size_t>(nv));
+  // Border vertices have one degree of freedom, the parameter on their border curve (x[2i]; x[2i+1] has
+  // no effect and stays 0 under the damping).
+  std::vector<int> curve_of(static_cast<std::size_t>(nv), -1);
+  std::vector<BorderCurve> curves;
   for (int i = 0; i < nv; ++i) {
     const VH v = variables[static_cast<std::size_t>(i)];
     base[static_cast<std::size_t>(i)] = mesh.point(v);
+    if (mesh.is_boundary(v)) {
+      BorderCurve c;
+      border_curve(mesh, v, c);  // the caller checked that it exists
+      curve_of[static_cast<std::size_t>(i)] = static_cast<int>(curves.size());
+      curves.push_back(c);
+      t1[static_cast<std::size_t>(i)] = c.derivative(0);
+      t2[static_cast<std::size_t>(i)] = Vec3(0, 0, 0);
+      continue;
+    }
     geometry::tangent_basis(geometry::vertex_normal(mesh, v), t1[static_cast<std::size_t>(i)], t2[static_cast<std::size_t>(i)]);
   }
   const double m2 = m * m;
   auto position = [&](const Eigen::VectorXd& x, int i) {
     const auto s = static_cast<std::size_t>(i);
+    if (curve_of[s] >= 0) return curves[static_cast<std::size_t>(curve_of[s])].at(x[2 * i]);
     return base[s] + x[2 * i] * t1[s] + x[2 * i + 1] * t2[s];
+  };
+  // A border parameter outside the middle halves of its border edges is not allowed.
+  auto admissible = [&](const Eigen::VectorXd& x) {
+    for (int i = 0; i < nv; ++i) {
+      const int c = curve_of[static_cast<std::size_t>(i)];
+      if (c >= 0 && !curves[static_cast<std::size_t>(c)].contains(x[2 * i])) return false;
+    }
+    return true;
   };
   auto point_of = [&](const Eigen::VectorXd& x, int index, VH v) { return index >= 0 ? position(x, index) : mesh.point(v); };
   // Error_b (Eq 4.7) plus a hinge on the interval: squared lengths outside [lo^2, hi^2] (the interval
@@ -142,6 +201,9 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   for (int it = 0; it < 20 && current > 0; ++it) {
     jtj.setZero();
     jtr.setZero();
+    for (int i = 0; i < nv; ++i)
+      if (const int c = curve_of[static_cast<std::size_t>(i)]; c >= 0)
+        t1[static_cast<std::size_t>(i)] = curves[static_cast<std::size_t>(c)].derivative(x[2 * i]);
     for (const Term& t : terms) {
       const Vec3 d = point_of(x, t.a, t.va) - point_of(x, t.b, t.vb);
       const double l2 = d.sqrnorm();
@@ -170,7 +232,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       const Eigen::VectorXd step = -h.ldlt().solve(jtr);
       if (!step.allFinite()) break;
       const Eigen::VectorXd trial = x + step;
-      const double e = energy(trial);
+      const double e = admissible(trial) ? energy(trial) : std::numeric_limits<double>::infinity();
       if (e < current) {
         const double gain = current - e;
         x = trial;
@@ -253,7 +315,7 @@ NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double e
   for (const auto& [p, index] : ordered) {
     const TriMesh::EdgeHandle e(index);
     if (!troubling(mesh, e, emin, emax)) continue;
-    // Border ends are never optimised here: they go through the border optimizer of section 4.3.2.
+    // Border ends first go through the border optimizer of section 4.3.2 (Eq 4.1 along their border curve).
     const auto h = mesh.halfedge_handle(e, 0);
     for (VH v : {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h)})
       if (mesh.is_boundary(v)) border_optimizer(mesh, v, m);
@@ -263,8 +325,10 @@ NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double e
       const int k = kn + attempt;
       collect_edge_star(mesh, e, k, star, marks);
       variables.clear();
+      BorderCurve curve;
       for (std::size_t i = 0; i < star.vertices.size() && star.ring[i] < k; ++i)
-        if (!mesh.is_boundary(star.vertices[i])) variables.push_back(star.vertices[i]);
+        if (!mesh.is_boundary(star.vertices[i]) || border_curve(mesh, star.vertices[i], curve))
+          variables.push_back(star.vertices[i]);
       if (variables.empty()) break;
       optimize_region(mesh, variables, emin, emax, attempt == 0 ? 1.0 : 10.0, marks);
       ++result.regions;

@@ -94,8 +94,9 @@ struct NonlinearResult {
   std::size_t regions = 0;    // regions optimised
 };
 // Minimises Error_b (Eq 4.7) over tangent-plane displacements of the kn-star around each troubling edge,
-// edges by priority p_j = n_l + n_s (ties by edge index). Border vertices stay fixed; border endpoints of
-// a troubling edge go through border_optimizer.
+// edges by priority p_j = n_l + n_s (ties by edge index). Border vertices move along their border curve
+// (the quadratic of border_optimizer, one parameter each); border endpoints of a troubling edge first go
+// through border_optimizer.
 NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double emax);
 
 // Minimises Error_b with the interval hinge over the interior vertices of the k-star of `e` (ring < k;
