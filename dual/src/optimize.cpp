@@ -4,7 +4,7 @@
 
 #include <chrono>
 #include <cmath>
-#include <map>
+#include <algorithm>
 #include <numbers>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -115,22 +115,22 @@ class DualEnergy {
 // The cosine of the target of every angle: the interior angle of a regular polygon of the size of the closed
 // ring the angle lies in (108 degrees in a pentagon, 120 in a hexagon, ...), 120 degrees outside closed rings.
 std::vector<double> target_cosines(const Dual& dual, const std::vector<AtomTriple>& angles) {
-  std::map<AtomTriple, double> in_ring;
+  // bond_angles orders the angles by centre atom: first[c] is the first angle centred on atom c.
+  std::vector<int> first(dual.atoms() + 1, 0);
+  for (const auto& t : angles) ++first[static_cast<std::size_t>(t[1]) + 1];
+  for (std::size_t i = 0; i < dual.atoms(); ++i) first[i + 1] += first[i];
+  std::vector<double> out(angles.size(), -0.5);
   for (std::size_t r = 0; r < dual.rings.size(); ++r) {
     const auto& ring = dual.rings[r];
     const std::size_t n = ring.size();
     if (!dual.ring_closed[r] || n < 3) continue;
-    const double interior = std::numbers::pi * static_cast<double>(n - 2) / static_cast<double>(n);
+    const double target = std::cos(std::numbers::pi * static_cast<double>(n - 2) / static_cast<double>(n));
     for (std::size_t k = 0; k < n; ++k) {
       const int j = ring[(k + n - 1) % n], c = ring[k], l = ring[(k + 1) % n];
-      in_ring[{std::min(j, l), c, std::max(j, l)}] = std::cos(interior);
+      const AtomTriple key{std::min(j, l), c, std::max(j, l)};
+      for (int a = first[static_cast<std::size_t>(c)]; a < first[static_cast<std::size_t>(c) + 1]; ++a)
+        if (angles[static_cast<std::size_t>(a)] == key) out[static_cast<std::size_t>(a)] = target;
     }
-  }
-  std::vector<double> out;
-  out.reserve(angles.size());
-  for (const auto& t : angles) {
-    const auto it = in_ring.find(t);
-    out.push_back(it == in_ring.end() ? -0.5 : it->second);
   }
   return out;
 }
