@@ -41,6 +41,7 @@ class DualEnergy {
     double e = 0, gs = 0;  // gs = dE/ds
     const double b = s_.bond;
     const double s = scale(x);
+    const double window = s_.bond_window, window_weight = s_.bond_window_weight;
     for (const auto& bond : bonds_) {
       const double* p = px + 3 * bond[0];
       const double* q = px + 3 * bond[1];
@@ -48,9 +49,16 @@ class DualEnergy {
       const double length = std::sqrt(r0 * r0 + r1 * r1 + r2 * r2);
       if (length == 0) continue;
       const double diff = s * length - b;
+      // (diff)^2 plus the window hinge w_h (|diff| - delta)^2 outside b +- delta: dE/d(diff) = de.
+      double de = 2 * diff;
       e += diff * diff;
-      gs += 2 * diff * length;
-      const double k = 2 * diff * s / length;
+      const double over = std::abs(diff) - window;
+      if (over > 0) {
+        e += window_weight * over * over;
+        de += 2 * window_weight * over * (diff > 0 ? 1 : -1);
+      }
+      gs += de * length;
+      const double k = de * s / length;
       double* gp = pg + 3 * bond[0];
       double* gq = pg + 3 * bond[1];
       gp[0] += k * r0, gp[1] += k * r1, gp[2] += k * r2;
@@ -161,7 +169,8 @@ void centre_and_radius(const TriMesh& surface, Vec3& centre, double& radius) {
 
 DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualOptimizeSettings& settings) {
   if (!(settings.bond > 0)) throw std::invalid_argument("optimize_dual: the bond length must be positive");
-  if (settings.angle_weight < 0 || settings.surface_weight < 0)
+  if (settings.angle_weight < 0 || settings.surface_weight < 0 || settings.bond_window_weight < 0 ||
+      settings.bond_window < 0)
     throw std::invalid_argument("optimize_dual: weights must not be negative");
   const auto t0 = std::chrono::steady_clock::now();
   const detail::SurfaceProjector projector(surface);

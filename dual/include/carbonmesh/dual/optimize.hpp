@@ -1,8 +1,8 @@
 #pragma once
 // Dual optimisation: moves the atoms so that every bond is close to the target length b and every bond angle
 // close to 120 degrees while the atoms stay on the input surface. Minimises, with L-BFGS,
-//   E(x) = sum_bonds (|x_i - x_j| - b)^2 + w_a b^2 sum_angles (cos theta - cos theta_0)^2
-//          + w_s sum_atoms d(x_i, S)^2
+//   E(x) = sum_bonds (|x_i - x_j| - b)^2 + w_h max(0, ||x_i - x_j| - b| - delta)^2
+//          + w_a b^2 sum_angles (cos theta - cos theta_0)^2 + w_s sum_atoms d(x_i, s S)^2
 // where S is the primal triangle mesh (closest points from a CGAL AABB tree) and theta_0 is the interior angle
 // of a regular polygon of the size of the ring the angle lies in: 120 degrees in hexagons (and outside closed
 // rings, at borders), 108 in pentagons, 128.6 in heptagons, so defects are not forced flat. Deterministic.
@@ -22,6 +22,11 @@ struct DualOptimizeSettings {
   // the shear of hexagons that w_a = 0 allows; the extreme angles (at 5-7 defects) hardly depend on it.
   double angle_weight = 0.01;
   double surface_weight = 10.0;       // w_s (per Angstrom^2)
+  // Window hinge: + w_h sum max(0, |l - b| - delta)^2. The quadratic bond term alone lets a few bonds at
+  // crowded 5-7 defects of large structures drift to b +- 0.06 A while the rest sit within 0.03; bond
+  // stretching is far stiffer than bending in real sp2 carbon, so bonds outside b +- delta pay 100 times more.
+  double bond_window = 0.04;          // delta (Angstrom)
+  double bond_window_weight = 100.0;  // w_h (0: off)
   int max_iterations = 2000;          // L-BFGS iterations at most (0: only measure)
   double gradient_tolerance = 1e-4;   // converged when every |dE/dx| is below this (bonds then settle to ~1e-4 A)
   // ... or when E fell by less than energy_tolerance * E over the last 10 iterations (0: off). The tail after
