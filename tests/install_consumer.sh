@@ -7,7 +7,13 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log"
 test -x "$work/prefix/bin/carbonmesh"
-cmake -S "$source_dir/consumer" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
+# The static libraries of a sanitizer build (make test-asan) call the ASan/UBSan runtimes: link them too.
+extra=()
+if grep -q '^CARBONMESH_SANITIZE:BOOL=ON' "$build_dir/CMakeCache.txt"; then
+  extra=(-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined)
+fi
+cmake -S "$source_dir/consumer" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release \
+  "${extra[@]}" > "$work/configure.log"
 cmake --build "$work/build" -j 2 > "$work/build.log"
 "$work/build/consumer"
 "$work/prefix/bin/carbonmesh" --version
