@@ -52,6 +52,21 @@ int improvement(const FlipQuad& q, const std::vector<int>& valence, const std::v
   return before - after;
 }
 
+// Valence and ideal valence of every vertex, kept up to date by the flips, and the J_mp of an edge from them.
+struct ValenceTable {
+  std::vector<int> valence, ideal;
+  explicit ValenceTable(const TriMesh& mesh) : valence(mesh.n_vertices(), 0), ideal(mesh.n_vertices(), 0) {
+    for (auto v : mesh.vertices()) {
+      valence[static_cast<std::size_t>(v.idx())] = static_cast<int>(mesh.valence(v));
+      ideal[static_cast<std::size_t>(v.idx())] = ideal_valence(mesh, v);
+    }
+  }
+  int gain(const TriMesh& mesh, TriMesh::EdgeHandle e) const {
+    if (mesh.status(e).deleted() || mesh.is_boundary(e)) return 0;
+    return improvement(quad(mesh, e), valence, ideal);
+  }
+};
+
 }  // namespace
 
 int valence_improvement(const TriMesh& mesh, TriMesh::EdgeHandle e) {
@@ -71,15 +86,9 @@ std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep) {
     double distance;  // | |e| - m |: farther from the interval centre first on equal gain
     int edge;
   };
-  std::vector<int> valence(mesh.n_vertices(), 0), ideal(mesh.n_vertices(), 0);
-  for (auto v : mesh.vertices()) {
-    valence[static_cast<std::size_t>(v.idx())] = static_cast<int>(mesh.valence(v));
-    ideal[static_cast<std::size_t>(v.idx())] = ideal_valence(mesh, v);
-  }
-  auto gain = [&](TriMesh::EdgeHandle e) {
-    if (mesh.status(e).deleted() || mesh.is_boundary(e)) return 0;
-    return improvement(quad(mesh, e), valence, ideal);
-  };
+  ValenceTable table(mesh);
+  std::vector<int>& valence = table.valence;
+  auto gain = [&](TriMesh::EdgeHandle e) { return table.gain(mesh, e); };
   std::size_t total = 0;
   for (int pass = 0; pass < 100; ++pass) {
     std::vector<Entry> list;
@@ -148,15 +157,10 @@ bool valence_defect(const FlipQuad& q, const std::vector<int>& valence, const st
 
 std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax,
                        int max_passes) {
-  std::vector<int> valence(mesh.n_vertices(), 0), ideal(mesh.n_vertices(), 0);
-  for (auto v : mesh.vertices()) {
-    valence[static_cast<std::size_t>(v.idx())] = static_cast<int>(mesh.valence(v));
-    ideal[static_cast<std::size_t>(v.idx())] = ideal_valence(mesh, v);
-  }
-  auto gain = [&](TriMesh::EdgeHandle e) {
-    if (mesh.status(e).deleted() || mesh.is_boundary(e)) return 0;
-    return improvement(quad(mesh, e), valence, ideal);
-  };
+  ValenceTable table(mesh);
+  std::vector<int>& valence = table.valence;
+  const std::vector<int>& ideal = table.ideal;
+  auto gain = [&](TriMesh::EdgeHandle e) { return table.gain(mesh, e); };
   auto count_flip = [&](const FlipQuad& q, int sign) {
     valence[static_cast<std::size_t>(q.a.idx())] -= sign;
     valence[static_cast<std::size_t>(q.b.idx())] -= sign;
