@@ -1,20 +1,12 @@
 #include "surface_projector.hpp"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
+#include "carbonmesh/remesh/triangle_tree.hpp"
 
 #include <algorithm>
 
 namespace carbonmesh::detail {
 namespace {
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using Triangles = std::vector<Triangle>;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using namespace triangle_tree;
 
 // Where on a triangle (a, b, c) the closest point lies: its interior, a corner, or an edge (ab, bc, ca).
 enum Region : int { Inside = 0, CornerA, CornerB, CornerC, EdgeAB, EdgeBC, EdgeCA };
@@ -53,7 +45,6 @@ struct SurfaceProjector::Impl {
 };
 
 SurfaceProjector::SurfaceProjector(const TriMesh& surface) : impl_(std::make_unique<Impl>()) {
-  auto to_point = [](const Vec3& p) { return Point(p[0], p[1], p[2]); };
   Impl& m = *impl_;
   // Faces in index order, deleted ones skipped; `index` maps mesh face -> compact index.
   std::vector<int> index(surface.n_faces(), -1);
@@ -110,7 +101,7 @@ void SurfaceProjector::closest_points(const std::vector<Vec3>& points, std::vect
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const Vec3& p = points[static_cast<std::size_t>(i)];
-    const auto [q, it] = m.tree.closest_point_and_primitive(Point(p[0], p[1], p[2]));
+    const auto [q, it] = m.tree.closest_point_and_primitive(to_point(p));
     closest[static_cast<std::size_t>(i)] = Vec3(q.x(), q.y(), q.z());
     faces[static_cast<std::size_t>(i)] = static_cast<int>(it - m.triangles.begin());
   }

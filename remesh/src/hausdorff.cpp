@@ -1,9 +1,7 @@
 #include "carbonmesh/remesh/hausdorff.hpp"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
+#include "carbonmesh/remesh/triangle_tree.hpp"
+
 
 #include <algorithm>
 #include <cmath>
@@ -14,27 +12,7 @@
 namespace carbonmesh {
 namespace {
 
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using Triangles = std::vector<Triangle>;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-Point to_point(const Vec3& p) { return Point(p[0], p[1], p[2]); }
-
-Triangles triangles_of(const TriMesh& mesh) {
-  Triangles out;
-  out.reserve(mesh.n_faces());
-  for (auto f : mesh.faces()) {
-    auto it = mesh.cfv_iter(f);
-    const Point a = to_point(mesh.point(*it++));
-    const Point b = to_point(mesh.point(*it++));
-    const Point c = to_point(mesh.point(*it));
-    out.emplace_back(a, b, c);
-  }
-  return out;
-}
+using namespace triangle_tree;
 
 // Area-uniform samples on the triangles (fixed seed: deterministic).
 std::vector<Point> sample(const Triangles& triangles, std::size_t n, std::uint64_t seed) {

@@ -8,10 +8,7 @@
 #include <charconv>
 #include <cmath>
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
+#include "carbonmesh/remesh/triangle_tree.hpp"
 
 #include <random>
 
@@ -69,20 +66,16 @@ void surface_moments(const TriMesh& mesh, Vec3& centroid, Eigen::Matrix3d& cov) 
 // of S reflected per candidate plane.
 class MirrorObjective {
  public:
-  using Kernel = CGAL::Simple_cartesian<double>;
-  using Point = Kernel::Point_3;
-  using Triangle = Kernel::Triangle_3;
-  using Triangles = std::vector<Triangle>;
-  using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+  using Point = triangle_tree::Point;
+  using Triangles = triangle_tree::Triangles;
+  using Tree = triangle_tree::Tree;
 
-  MirrorObjective(const TriMesh& mesh, std::size_t samples) {
+  MirrorObjective(const TriMesh& mesh, std::size_t samples) : triangles_(triangle_tree::triangles_of(mesh)) {
     std::vector<double> cumulative;
     double total = 0;
     for (auto f : mesh.faces()) {
       auto it = mesh.cfv_iter(f);
       const Vec3 a = mesh.point(*it++), b = mesh.point(*it++), c = mesh.point(*it);
-      triangles_.emplace_back(Point(a[0], a[1], a[2]), Point(b[0], b[1], b[2]), Point(c[0], c[1], c[2]));
       total += 0.5 * OpenMesh::cross(b - a, c - a).norm();
       cumulative.push_back(total);
     }
@@ -107,7 +100,7 @@ class MirrorObjective {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < samples_.size(); ++i) {
       const Vec3 m = reflect(samples_[i], plane);
-      d2[i] = tree_.squared_distance(Point(m[0], m[1], m[2]));
+      d2[i] = tree_.squared_distance(triangle_tree::to_point(m));
     }
     double max2 = 0;
     for (double d : d2) max2 = std::max(max2, d);
