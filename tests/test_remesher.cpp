@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/remesher.hpp"
@@ -123,6 +124,29 @@ TEST(Remesher, RegularizeKeepsTheIntervalAndRaisesRegularity) {
 }
 TEST(Remesher, RefinedSphereWithMeanEdge1Converges) { expect_converges(sphere(4, 1.0)); }
 TEST(Remesher, RefinedTorusWithMeanEdge1Converges) { expect_converges(torus(1.0, 1.0)); }
+
+// The surface fit: on a finely tessellated sphere (radius 10), remeshing into [1.2, 1.8] with the fit gives a
+// clearly smaller distance to the input than with every vertex on the input, and keeps every edge inside.
+TEST(SurfaceFit, HalvesTheChordErrorAndKeepsEveryEdgeInside) {
+  const TriMesh input = make_icosphere({10.0, 4});
+  TriMesh on_input = input, fitted = input;
+  RemeshSettings settings;
+  settings.fit_surface = false;
+  ASSERT_TRUE(remesh(on_input, settings).converged);
+  settings.fit_surface = true;
+  const RemeshResult result = remesh(fitted, settings);
+  ASSERT_TRUE(result.converged);
+  EXPECT_TRUE(result.fitted);
+  EXPECT_LT(result.fit_rms_after, 0.7 * result.fit_rms_before);
+  const EdgeStats edges = edge_stats(fitted, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  HausdorffSettings hs;
+  hs.samples = 50000;
+  const HausdorffResult before = hausdorff_distance(on_input, input, hs), after = hausdorff_distance(fitted, input, hs);
+  EXPECT_LT(after.rms, 0.7 * before.rms);
+  EXPECT_LT(after.max, 0.8 * before.max);
+  EXPECT_TRUE(topology(fitted).same_type(topology(input)));
+}
 
 TEST(Remesher, IsDeterministic) {
   TriMesh a = torus(0.0, 2.25), b = torus(0.0, 2.25);

@@ -79,6 +79,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   const EdgeInterval interval{s.emin, s.emax};
 
   auto target = std::make_unique<TriMesh>(mesh);  // M: the projection mesh
+  // The input for the final surface fit (the projection mesh is the input too unless p replaces it).
+  std::unique_ptr<TriMesh> input = s.fit_surface && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
   auto projection_target = std::make_unique<ProjectionTarget>(*target);
   EdgeStats edges = edge_stats(mesh, interval);
   BestMesh best(mesh, edges.long_edges + edges.short_edges, valence_stats(mesh).percent_regular);
@@ -154,6 +156,16 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // Valence optimisation that keeps every edge inside (regularize in correct_valence.cpp).
   if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0)
     spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
+  if (s.fit_surface) {
+    if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
+      const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax);
+      result.fitted = true;
+      result.fit_rms_before = fit.rms_before;
+      result.fit_rms_after = fit.rms_after;
+      spdlog::debug("surface fit: RMS distance {:.4f} -> {:.4f}, {} offset halvings", fit.rms_before,
+                    fit.rms_after, fit.limited);
+    }
+  }
   // The topology guard: a final mesh of another surface type is replaced by the best valid one.
   if (const std::optional<Topology> changed = enforce_surface_type(mesh, best)) {
     result.topology_violation = true;
@@ -202,6 +214,9 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"topology_kept", r.before.same_type(r.after)},
           {"topology_violation", r.topology_violation},
           {"rejected_best", r.rejected_best},
+          {"fitted", r.fitted},
+          {"fit_rms_before", r.fit_rms_before},
+          {"fit_rms_after", r.fit_rms_after},
           {"log", log}};
   if (r.topology_violation) j["topology_changed"] = to_json(r.changed);
   return j;

@@ -145,4 +145,21 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
 // keeps the best state. Returns the number of rounds that improved.
 int post_process(TriMesh& mesh, int kn, double emin, double emax);
 
+// ---- surface_fit.cpp: least-squares fit of the remeshed surface to the input (after Algorithm 1) ---------
+
+struct SurfaceFitSettings {
+  int rounds = 2;           // linearise-and-solve rounds
+  double max_offset = 0.4;  // largest move of a vertex off its place, as a fraction of emin
+};
+
+struct SurfaceFitResult {
+  double rms_before = 0, rms_after = 0;  // area-weighted RMS distance of the faces' quadrature points to the input
+  std::size_t limited = 0;               // offset halvings that kept an edge inside [emin, emax]
+};
+
+// Moves every vertex along its normal so that the squared distance between the triangles and `surface` is
+// least (sparse normal equations, conjugate gradients); edges inside [emin, emax] before stay inside.
+SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
+                                const SurfaceFitSettings& settings = {});
+
 }  // namespace carbonmesh

@@ -38,6 +38,10 @@ struct RemeshSettings {
   // over the area of an equilateral triangle of edge (emin + emax) / 2. Guards against a model in the wrong
   // units (a 1e9 sphere remeshed to edges of 2) filling the memory.
   double max_faces = 1e8;
+  // After convergence, move the vertices along their normals to the least-squares fit of the input
+  // (fit_to_surface in remesh_steps.hpp): about half the Hausdorff distance, every edge kept inside.
+  // Off: every vertex stays on the input, as in the dissertation.
+  bool fit_surface = true;
   // Called after every iteration (progress lines, CSV logs). May be empty.
   std::function<void(const IterationLog&)> on_iteration;
 };
@@ -56,6 +60,8 @@ struct RemeshResult {
   bool topology_violation = false;
   Topology changed;
   std::size_t rejected_best = 0;  // iterations whose better mesh was refused as best for a changed surface type
+  bool fitted = false;            // fit_to_surface ran (settings.fit_surface)
+  double fit_rms_before = 0, fit_rms_after = 0;  // its area-weighted RMS distance to the input, before and after
   std::vector<IterationLog> log;
 };
 
