@@ -95,6 +95,48 @@ void shape_preserving_weights(const Vec3& center, const std::vector<Vec3>& ring,
 
 }  // namespace
 
+RingWeights ring_weights(const TriMesh& mesh, ParametrizationWeights weights) {
+  const std::size_t n = mesh.n_vertices();
+  RingWeights r;
+  r.begin.assign(n + 1, 0);
+  r.valid.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const TriMesh::VertexHandle v(static_cast<int>(i));
+    const bool use = !mesh.status(v).deleted() && !mesh.is_isolated(v) && !mesh.is_boundary(v);
+    r.begin[i + 1] = r.begin[i] + (use ? static_cast<int>(mesh.valence(v)) : 0);
+  }
+  r.ring.resize(static_cast<std::size_t>(r.begin[n]));
+  r.lambda.resize(r.ring.size());
+  const int count = static_cast<int>(n);
+#pragma omp parallel
+  {
+    std::vector<Vec3> ring;
+    std::vector<double> lambda;
+#pragma omp for schedule(dynamic, 256)
+    for (int i = 0; i < count; ++i) {
+      const std::size_t b = static_cast<std::size_t>(r.begin[static_cast<std::size_t>(i)]);
+      const std::size_t e = static_cast<std::size_t>(r.begin[static_cast<std::size_t>(i) + 1]);
+      if (e == b) continue;
+      const TriMesh::VertexHandle v(i);
+      ring.clear();
+      std::size_t k = b;
+      for (auto w : mesh.vv_range(v)) {
+        r.ring[k++] = w.idx();
+        ring.push_back(mesh.point(w));
+      }
+      if (ring.size() < 3 || ring.size() > 64) continue;
+      lambda.assign(ring.size(), 0.0);
+      if (weights == ParametrizationWeights::MeanValue)
+        mean_value_weights(mesh.point(v), ring, lambda);
+      else
+        shape_preserving_weights(mesh.point(v), ring, lambda);
+      std::copy(lambda.begin(), lambda.end(), r.lambda.begin() + static_cast<std::ptrdiff_t>(b));
+      r.valid[static_cast<std::size_t>(i)] = 1;
+    }
+  }
+  return r;
+}
+
 StarScratch::StarScratch(const TriMesh& mesh)
     : vertex_mark(mesh.n_vertices(), 0), face_mark(mesh.n_faces(), 0), local(mesh.n_vertices(), -1) {}
 
@@ -203,6 +245,24 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
     if (unknown[i] < 0) continue;
     const auto v = star.vertices[i];
     if (mesh.is_boundary(v)) return false;
+    const int row = unknown[i];
+    if (s.weights && s.weights->valid[static_cast<std::size_t>(v.idx())]) {  // cached ring and weights
+      const RingWeights& c = *s.weights;
+      triplets.emplace_back(row, row, 1.0);
+      for (int j = c.begin[static_cast<std::size_t>(v.idx())]; j < c.begin[static_cast<std::size_t>(v.idx()) + 1]; ++j) {
+        const int w = c.ring[static_cast<std::size_t>(j)];
+        const int l = s.local[static_cast<std::size_t>(w)];
+        if (l < 0 || s.vertex_mark[static_cast<std::size_t>(w)] != s.stamp) return false;
+        const double weight = c.lambda[static_cast<std::size_t>(j)];
+        if (!std::isfinite(weight)) return false;
+        const int col = unknown[static_cast<std::size_t>(l)];
+        if (col >= 0)
+          triplets.emplace_back(row, col, -weight);
+        else
+          rhs.row(row) += weight * uv[static_cast<std::size_t>(l)].transpose();
+      }
+      continue;
+    }
     ring.clear();
     ring_local.clear();
     for (auto w : mesh.vv_range(v)) {
@@ -217,7 +277,6 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
       mean_value_weights(mesh.point(v), ring, lambda);
     else
       shape_preserving_weights(mesh.point(v), ring, lambda);
-    const int row = unknown[i];
     triplets.emplace_back(row, row, 1.0);
     for (std::size_t j = 0; j < ring.size(); ++j) {
       if (!std::isfinite(lambda[j])) return false;

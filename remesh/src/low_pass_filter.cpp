@@ -151,9 +151,11 @@ bool border_optimizer(TriMesh& mesh, TriMesh::VertexHandle v, double m) {
 void low_pass_filter(TriMesh& mesh, int kl, ParametrizationWeights weights, double m) {
   const int n = static_cast<int>(mesh.n_vertices());
   std::vector<Vec3> moved(static_cast<std::size_t>(n));
+  const RingWeights cached = ring_weights(mesh, weights);
 #pragma omp parallel
   {
     StarScratch scratch(mesh);
+    scratch.weights = &cached;
 #pragma omp for schedule(dynamic, 64)
     for (int i = 0; i < n; ++i) {
       const TriMesh::VertexHandle v(i);

@@ -115,7 +115,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     IntermediateInterval step = intermediate_interval(edges.mean, s.emin, s.emax);
     if (nonlinear_phase) step = {s.emin - 0.25 * (s.emax - s.emin), s.emax + 0.25 * (s.emax - s.emin)};
     const StellarResult stellar = stellar_operations(mesh, step.emin, step.emax, m);
-    mesh.garbage_collection();
+    if (stellar.collapses > 0) mesh.garbage_collection();  // only collapses delete elements
     const std::size_t flips = correct_valence(mesh, m, nonlinear_phase ? &interval : nullptr);
     spdlog::debug("iteration {}: interval [{:.4f}, {:.4f}], {} splits, {} collapses, {} flips", iteration + 1,
                   step.emin, step.emax, stellar.splits, stellar.collapses, flips);

@@ -60,10 +60,21 @@ struct KStar {
   std::vector<int> ring;                        // star number of each vertex
   std::vector<TriMesh::FaceHandle> faces;
 };
+// Every interior vertex's 1-ring (circulator order) and its parametrization weights lambda_ij (Eq 3.4-3.5
+// or shape-preserving), computed once per pass of the low-pass filter instead of once per star holding the
+// vertex (the same numbers: positions do not change during a pass).
+struct RingWeights {
+  std::vector<int> begin;        // CSR offsets, one more than vertices
+  std::vector<int> ring;         // neighbour indices
+  std::vector<double> lambda;    // weight of each neighbour
+  std::vector<char> valid;       // weights present (interior vertex with 3 to 64 neighbours)
+};
+RingWeights ring_weights(const TriMesh& mesh, ParametrizationWeights weights);
 // Per-thread scratch space for k-star collection (sized to the mesh).
 struct StarScratch {
   std::vector<int> vertex_mark, face_mark, local;
   int stamp = 0;
+  const RingWeights* weights = nullptr;  // if set, compute_parametrization reads the weights from here
   explicit StarScratch(const TriMesh& mesh);
 };
 void collect_k_star(const TriMesh& mesh, TriMesh::VertexHandle v, int k, KStar& star, StarScratch& scratch);
