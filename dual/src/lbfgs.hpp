@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <vector>
 
 namespace carbonmesh::detail {
 
@@ -33,8 +34,14 @@ LbfgsResult minimize_lbfgs(Eigen::VectorXd& x, Function&& f, const LbfgsSettings
   Eigen::VectorXd g(x.size()), g_new(x.size()), x_new(x.size()), d(x.size());
   double e = f(x, g);
   result.evaluations = 1;
-  std::deque<Eigen::VectorXd> s_hist, y_hist;
-  std::deque<double> rho_hist;
+  // The last `memory` pairs s = x_k+1 - x_k, y = g_k+1 - g_k in a ring of preallocated vectors (no allocation per
+  // iteration: at a million atoms a fresh pair is 2 x 24 MB of page faults); pair k (0 = oldest) is at
+  // (first + k) % memory.
+  const std::size_t capacity = static_cast<std::size_t>(std::max(settings.memory, 1));
+  std::vector<Eigen::VectorXd> s_hist(capacity, Eigen::VectorXd(x.size())), y_hist(capacity, Eigen::VectorXd(x.size()));
+  std::vector<double> rho_hist(capacity), alpha(capacity);
+  std::size_t first = 0, m = 0;
+  auto slot = [&](std::size_t k) { return (first + k) % capacity; };
   std::deque<double> energies{e};  // the last energy_window + 1 energies
   for (int it = 0; it < settings.max_iterations; ++it) {
     result.gradient_max = x.size() ? g.cwiseAbs().maxCoeff() : 0.0;
@@ -44,20 +51,23 @@ LbfgsResult minimize_lbfgs(Eigen::VectorXd& x, Function&& f, const LbfgsSettings
     }
     // Two-loop recursion.
     d = -g;
-    const std::size_t m = s_hist.size();
-    std::vector<double> alpha(m);
     for (std::size_t k = m; k-- > 0;) {
-      alpha[k] = rho_hist[k] * s_hist[k].dot(d);
-      d -= alpha[k] * y_hist[k];
+      const std::size_t j = slot(k);
+      alpha[k] = rho_hist[j] * s_hist[j].dot(d);
+      d -= alpha[k] * y_hist[j];
     }
-    if (m > 0) d *= s_hist.back().dot(y_hist.back()) / y_hist.back().squaredNorm();
+    if (m > 0) {
+      const std::size_t j = slot(m - 1);
+      d *= s_hist[j].dot(y_hist[j]) / y_hist[j].squaredNorm();
+    }
     for (std::size_t k = 0; k < m; ++k) {
-      const double beta = rho_hist[k] * y_hist[k].dot(d);
-      d += (alpha[k] - beta) * s_hist[k];
+      const std::size_t j = slot(k);
+      const double beta = rho_hist[j] * y_hist[j].dot(d);
+      d += (alpha[k] - beta) * s_hist[j];
     }
     double slope = g.dot(d);
     if (!(slope < 0)) {  // not a descent direction: restart from steepest descent
-      s_hist.clear(), y_hist.clear(), rho_hist.clear();
+      m = 0;
       d = -g;
       slope = g.dot(d);
     }
@@ -77,19 +87,19 @@ LbfgsResult minimize_lbfgs(Eigen::VectorXd& x, Function&& f, const LbfgsSettings
       step *= 0.5;
     }
     if (!accepted) {
-      if (s_hist.empty()) break;  // even steepest descent fails: at the precision limit
-      s_hist.clear(), y_hist.clear(), rho_hist.clear();
+      if (m == 0) break;  // even steepest descent fails: at the precision limit
+      m = 0;
       continue;
     }
-    Eigen::VectorXd s = x_new - x, y = g_new - g;
-    const double sy = s.dot(y);
-    if (sy > 1e-12 * y.squaredNorm()) {
-      s_hist.push_back(std::move(s));
-      y_hist.push_back(std::move(y));
-      rho_hist.push_back(1.0 / sy);
-      if (static_cast<int>(s_hist.size()) > settings.memory) {
-        s_hist.pop_front(), y_hist.pop_front(), rho_hist.pop_front();
-      }
+    // The new pair, when s.y > 0, goes into the next free slot (over the oldest pair once the ring is full).
+    const double sy = (x_new - x).dot(g_new - g);
+    if (sy > 1e-12 * (g_new - g).squaredNorm()) {
+      const std::size_t j = m < capacity ? slot(m) : first;
+      s_hist[j] = x_new - x;
+      y_hist[j] = g_new - g;
+      rho_hist[j] = 1.0 / sy;
+      if (m < capacity) ++m;
+      else first = (first + 1) % capacity;
     }
     x.swap(x_new);
     g.swap(g_new);
