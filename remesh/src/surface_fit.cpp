@@ -35,16 +35,23 @@ struct Sample {
   double residual = 0;                  // signed distance of the sample to the input along its normal
 };
 
+// The closest input point of each sample of the previous evaluation: the hint of the next search (the
+// faces and their order do not change between evaluations, only the positions a little).
+using Hints = std::vector<Tree::Point_and_primitive_id>;
+
 Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
 
 // Signed distances of the quadrature points of every face to the input (parallel over faces; each sample
 // writes its own slot, so the result does not depend on the thread count).
-std::vector<Sample> sample_residuals(const TriMesh& mesh, const Tree& tree, const std::vector<Vec3>& normals) {
+std::vector<Sample> sample_residuals(const TriMesh& mesh, const Tree& tree, const std::vector<Vec3>& normals,
+                                     Hints& hints) {
   std::vector<TriMesh::FaceHandle> faces;
   faces.reserve(mesh.n_faces());
   for (auto f : mesh.faces())
     if (!mesh.status(f).deleted()) faces.push_back(f);
   std::vector<Sample> samples(3 * faces.size());
+  const bool hinted = hints.size() == samples.size();
+  if (!hinted) hints.resize(samples.size());
   const int n = static_cast<int>(faces.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (int i = 0; i < n; ++i) {
@@ -61,7 +68,9 @@ std::vector<Sample> sample_residuals(const TriMesh& mesh, const Tree& tree, cons
     for (std::size_t q = 0; q < kQuadrature.size(); ++q) {
       const auto& b = kQuadrature[q];
       const Vec3 x = b[0] * p[0] + b[1] * p[1] + b[2] * p[2];
-      const auto [closest, primitive] = tree.closest_point_and_primitive(to_point(x));
+      auto& hint = hints[3 * static_cast<std::size_t>(i) + q];
+      hint = hinted ? tree.closest_point_and_primitive(to_point(x), hint) : tree.closest_point_and_primitive(to_point(x));
+      const auto& [closest, primitive] = hint;
       const Triangle& t = *primitive;
       Vec3 ns = to_vec(CGAL::ORIGIN + CGAL::cross_product(t[1] - t[0], t[2] - t[0]));
       const double l = ns.norm();
@@ -109,11 +118,12 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
   for (auto v : mesh.vertices()) start[static_cast<std::size_t>(v.idx())] = mesh.point(v);
   const double max_offset = settings.max_offset * emin;
 
-  std::vector<Sample> samples = sample_residuals(mesh, tree, unit_vertex_normals(mesh));
+  Hints hints;
+  std::vector<Sample> samples = sample_residuals(mesh, tree, unit_vertex_normals(mesh), hints);
   result.rms_before = weighted_rms(samples);
   for (int round = 0; round < settings.rounds; ++round) {
     const std::vector<Vec3> normals = unit_vertex_normals(mesh);
-    if (round > 0) samples = sample_residuals(mesh, tree, normals);
+    if (round > 0) samples = sample_residuals(mesh, tree, normals, hints);
     // Normal equations of min sum_s w_s (r_s + sum_k c_sk delta_k)^2 + lambda |delta|^2.
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(9 * samples.size() + n);
@@ -172,7 +182,7 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
       mesh.set_point(v, round == kHalvings ? start[i] : start[i] + 0.5 * (mesh.point(v) - start[i]));
     }
   }
-  result.rms_after = weighted_rms(sample_residuals(mesh, tree, unit_vertex_normals(mesh)));
+  result.rms_after = weighted_rms(sample_residuals(mesh, tree, unit_vertex_normals(mesh), hints));
   return result;
 }
 
