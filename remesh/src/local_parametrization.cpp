@@ -245,46 +245,42 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
     if (unknown[i] < 0) continue;
     const auto v = star.vertices[i];
     if (mesh.is_boundary(v)) return false;
-    const int row = unknown[i];
+    ring_local.clear();
+    const double* weight = nullptr;  // lambda_ij of each neighbour, in ring_local's order
     if (s.weights && s.weights->valid[static_cast<std::size_t>(v.idx())]) {  // cached ring and weights
       const RingWeights& c = *s.weights;
-      triplets.emplace_back(row, row, 1.0);
-      for (int j = c.begin[static_cast<std::size_t>(v.idx())]; j < c.begin[static_cast<std::size_t>(v.idx()) + 1]; ++j) {
-        const int w = c.ring[static_cast<std::size_t>(j)];
-        const int l = s.local[static_cast<std::size_t>(w)];
-        if (l < 0 || s.vertex_mark[static_cast<std::size_t>(w)] != s.stamp) return false;
-        const double weight = c.lambda[static_cast<std::size_t>(j)];
-        if (!std::isfinite(weight)) return false;
-        const int col = unknown[static_cast<std::size_t>(l)];
-        if (col >= 0)
-          triplets.emplace_back(row, col, -weight);
-        else
-          rhs.row(row) += weight * uv[static_cast<std::size_t>(l)].transpose();
+      const int begin = c.begin[static_cast<std::size_t>(v.idx())], end = c.begin[static_cast<std::size_t>(v.idx()) + 1];
+      for (int j = begin; j < end; ++j) {
+        const std::size_t w = static_cast<std::size_t>(c.ring[static_cast<std::size_t>(j)]);
+        if (s.local[w] < 0 || s.vertex_mark[w] != s.stamp) return false;
+        ring_local.push_back(s.local[w]);
       }
-      continue;
+      weight = c.lambda.data() + begin;
+    } else {
+      ring.clear();
+      for (auto w : mesh.vv_range(v)) {
+        const int l = local(w);
+        if (l < 0 || s.vertex_mark[static_cast<std::size_t>(w.idx())] != s.stamp) return false;
+        ring.push_back(mesh.point(w));
+        ring_local.push_back(l);
+      }
+      if (ring.size() < 3 || ring.size() > 64) return false;
+      lambda.assign(ring.size(), 0.0);
+      if (weights == ParametrizationWeights::MeanValue)
+        mean_value_weights(mesh.point(v), ring, lambda);
+      else
+        shape_preserving_weights(mesh.point(v), ring, lambda);
+      weight = lambda.data();
     }
-    ring.clear();
-    ring_local.clear();
-    for (auto w : mesh.vv_range(v)) {
-      const int l = local(w);
-      if (l < 0 || s.vertex_mark[static_cast<std::size_t>(w.idx())] != s.stamp) return false;
-      ring.push_back(mesh.point(w));
-      ring_local.push_back(l);
-    }
-    if (ring.size() < 3 || ring.size() > 64) return false;
-    lambda.assign(ring.size(), 0.0);
-    if (weights == ParametrizationWeights::MeanValue)
-      mean_value_weights(mesh.point(v), ring, lambda);
-    else
-      shape_preserving_weights(mesh.point(v), ring, lambda);
+    const int row = unknown[i];
     triplets.emplace_back(row, row, 1.0);
-    for (std::size_t j = 0; j < ring.size(); ++j) {
-      if (!std::isfinite(lambda[j])) return false;
+    for (std::size_t j = 0; j < ring_local.size(); ++j) {
+      if (!std::isfinite(weight[j])) return false;
       const int col = unknown[static_cast<std::size_t>(ring_local[j])];
       if (col >= 0)
-        triplets.emplace_back(row, col, -lambda[j]);
+        triplets.emplace_back(row, col, -weight[j]);
       else
-        rhs.row(row) += lambda[j] * uv[static_cast<std::size_t>(ring_local[j])].transpose();
+        rhs.row(row) += weight[j] * uv[static_cast<std::size_t>(ring_local[j])].transpose();
     }
   }
   Eigen::MatrixX2d x;
