@@ -126,17 +126,25 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
     if (round > 0) samples = sample_residuals(mesh, tree, normals, hints);
     // Normal equations of min sum_s w_s (r_s + sum_k c_sk delta_k)^2 + lambda |delta|^2.
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(9 * samples.size() + n);
+    triplets.reserve(3 * samples.size() + n);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
     double mean_weight = 0;
     for (const auto& s : samples) mean_weight += s.weight;
     mean_weight /= std::max<std::size_t>(1, samples.size());
-    for (const auto& s : samples)
-      for (std::size_t a = 0; a < 3; ++a) {
-        rhs[s.vertex[a]] -= s.weight * s.coefficient[a] * s.residual;
-        for (std::size_t b = 0; b < 3; ++b)
-          triplets.emplace_back(s.vertex[a], s.vertex[b], s.weight * s.coefficient[a] * s.coefficient[b]);
+    // A face's quadrature points share its three vertices: one 3x3 block per face (fewer triplets to sort).
+    for (std::size_t f = 0; f < samples.size(); f += kQuadrature.size()) {
+      double block[3][3] = {};
+      for (std::size_t q = f; q < f + kQuadrature.size(); ++q) {
+        const Sample& s = samples[q];
+        for (std::size_t a = 0; a < 3; ++a) {
+          rhs[s.vertex[a]] -= s.weight * s.coefficient[a] * s.residual;
+          for (std::size_t b = 0; b < 3; ++b) block[a][b] += s.weight * s.coefficient[a] * s.coefficient[b];
+        }
       }
+      const auto& v = samples[f].vertex;
+      for (std::size_t a = 0; a < 3; ++a)
+        for (std::size_t b = 0; b < 3; ++b) triplets.emplace_back(v[a], v[b], block[a][b]);
+    }
     for (std::size_t i = 0; i < n; ++i)  // Tikhonov term: isolated or unconstrained vertices stay put
       triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 1e-3 * mean_weight);
     Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
