@@ -153,11 +153,11 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     post_process(mesh, s.kn, s.emin, s.emax);
     result.post_processed = true;
   }
-  // Valence optimisation that keeps every edge inside (regularize in correct_valence.cpp).
-  if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0)
+  // Once every edge is inside: valence optimisation that keeps them inside (regularize in correct_valence.cpp),
+  // then the surface fit, which keeps them inside too.
+  if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
     spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
-  if (s.fit_surface) {
-    if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
+    if (s.fit_surface) {
       const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax);
       result.fitted = true;
       result.fit_rms_before = fit.rms_before;

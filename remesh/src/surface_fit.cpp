@@ -119,11 +119,14 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
   const double max_offset = settings.max_offset * emin;
 
   Hints hints;
-  std::vector<Sample> samples = sample_residuals(mesh, tree, unit_vertex_normals(mesh), hints);
+  std::vector<Vec3> normals = unit_vertex_normals(mesh);
+  std::vector<Sample> samples = sample_residuals(mesh, tree, normals, hints);
   result.rms_before = weighted_rms(samples);
   for (int round = 0; round < settings.rounds; ++round) {
-    const std::vector<Vec3> normals = unit_vertex_normals(mesh);
-    if (round > 0) samples = sample_residuals(mesh, tree, normals, hints);
+    if (round > 0) {
+      normals = unit_vertex_normals(mesh);
+      samples = sample_residuals(mesh, tree, normals, hints);
+    }
     // Normal equations of min sum_s w_s (r_s + sum_k c_sk delta_k)^2 + lambda |delta|^2.
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(3 * samples.size() + n);
