@@ -94,20 +94,14 @@ bool border_optimizer(TriMesh& mesh, TriMesh::VertexHandle v, double m) {
   const auto in = mesh.prev_halfedge_handle(out);
   const auto va = mesh.from_vertex_handle(in), vb = mesh.to_vertex_handle(out);
   if (va == vb) return false;
-  const Vec3 a = mesh.point(va), p = mesh.point(v), b = mesh.point(vb);
-  const double ta = -(p - a).norm(), tb = (b - p).norm();
+  geometry::BorderCurve curve;  // the quadratic through (ta, a), (0, p), (tb, b)
+  curve.a = mesh.point(va), curve.p = mesh.point(v), curve.b = mesh.point(vb);
+  const double ta = curve.ta = -(curve.p - curve.a).norm(), tb = curve.tb = (curve.b - curve.p).norm();
   if (ta >= 0 || tb <= 0) return false;
-  // The quadratic through (ta, a), (0, p), (tb, b) (Lagrange form, chord-length parameter).
-  auto curve = [&](double t) {
-    const double la = t * (t - tb) / (ta * (ta - tb));
-    const double lp = (t - ta) * (t - tb) / (ta * tb);
-    const double lb = (t - ta) * t / (tb * (tb - ta));
-    return la * a + lp * p + lb * b;
-  };
   std::vector<Vec3> nb;
   for (auto w : mesh.vv_range(v)) nb.push_back(mesh.point(w));
   auto energy = [&](double t) {  // Eq 4.1
-    const Vec3 x = curve(t);
+    const Vec3 x = curve.at(t);
     double e = 0;
     for (const auto& q : nb) {
       const double r = (x - q).norm() - m;
@@ -135,7 +129,7 @@ bool border_optimizer(TriMesh& mesh, TriMesh::VertexHandle v, double m) {
   const double t = 0.5 * (l + r);
   if (energy(t) < best_e) best_t = t;
   if (best_t == 0) return false;
-  const Vec3 x = curve(best_t);
+  const Vec3 x = curve.at(best_t);
   for (auto f : mesh.vf_range(v)) {
     Vec3 q[3];
     int i = 0;

@@ -26,29 +26,8 @@ bool troubling(const TriMesh& mesh, TriMesh::EdgeHandle e, double emin, double e
   return l < emin || l > emax;
 }
 
-// A border vertex moves along the quadratic through its two border neighbours (section 4.3.2), with the
-// chord-length parameter t: curve(0) is its position, t in [ta/2, tb/2] (the middle halves of its border
-// edges, as in border_optimizer).
-struct BorderCurve {
-  Vec3 a, p, b;
-  double ta = 0, tb = 0;
-  Vec3 at(double t) const {
-    const double la = t * (t - tb) / (ta * (ta - tb));
-    const double lp = (t - ta) * (t - tb) / (ta * tb);
-    const double lb = (t - ta) * t / (tb * (tb - ta));
-    return la * a + lp * p + lb * b;
-  }
-  Vec3 derivative(double t) const {
-    const double la = (2 * t - tb) / (ta * (ta - tb));
-    const double lp = (2 * t - ta - tb) / (ta * tb);
-    const double lb = (2 * t - ta) / (tb * (tb - ta));
-    return la * a + lp * p + lb * b;
-  }
-  bool contains(double t) const { return t >= 0.5 * ta && t <= 0.5 * tb; }
-};
-
 // The border curve of `v`; false when `v` is not on exactly one border or its border neighbours coincide.
-bool border_curve(const TriMesh& mesh, VH v, BorderCurve& c) {
+bool border_curve(const TriMesh& mesh, VH v, geometry::BorderCurve& c) {
   TriMesh::HalfedgeHandle out;
   int count = 0;
   for (auto h : mesh.voh_range(v))
@@ -147,12 +126,12 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   // Border vertices have one degree of freedom, the parameter on their border curve (x[2i]; x[2i+1] has
   // no effect and stays 0 under the damping).
   std::vector<int> curve_of(static_cast<std::size_t>(nv), -1);
-  std::vector<BorderCurve> curves;
+  std::vector<geometry::BorderCurve> curves;
   for (int i = 0; i < nv; ++i) {
     const VH v = variables[static_cast<std::size_t>(i)];
     base[static_cast<std::size_t>(i)] = mesh.point(v);
     if (mesh.is_boundary(v)) {
-      BorderCurve c;
+      geometry::BorderCurve c;
       border_curve(mesh, v, c);  // the caller checked that it exists
       curve_of[static_cast<std::size_t>(i)] = static_cast<int>(curves.size());
       curves.push_back(c);
@@ -325,7 +304,7 @@ NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double e
       const int k = kn + attempt;
       collect_edge_star(mesh, e, k, star, marks);
       variables.clear();
-      BorderCurve curve;
+      geometry::BorderCurve curve;
       for (std::size_t i = 0; i < star.vertices.size() && star.ring[i] < k; ++i)
         if (!mesh.is_boundary(star.vertices[i]) || border_curve(mesh, star.vertices[i], curve))
           variables.push_back(star.vertices[i]);

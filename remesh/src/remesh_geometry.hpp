@@ -68,4 +68,25 @@ inline double edge_length(const TriMesh& mesh, TriMesh::EdgeHandle e) {
   return (mesh.point(mesh.to_vertex_handle(h)) - mesh.point(mesh.from_vertex_handle(h))).norm();
 }
 
+// A border vertex moves along the quadratic through its two border neighbours (section 4.3.2), with the
+// chord-length parameter t: curve(0) is its position, t in [ta/2, tb/2] (the middle halves of its border
+// edges, as in border_optimizer and the nonlinear optimizer).
+struct BorderCurve {
+  Vec3 a, p, b;
+  double ta = 0, tb = 0;
+  Vec3 at(double t) const {
+    const double la = t * (t - tb) / (ta * (ta - tb));
+    const double lp = (t - ta) * (t - tb) / (ta * tb);
+    const double lb = (t - ta) * t / (tb * (tb - ta));
+    return la * a + lp * p + lb * b;
+  }
+  Vec3 derivative(double t) const {
+    const double la = (2 * t - tb) / (ta * (ta - tb));
+    const double lp = (2 * t - ta - tb) / (ta * tb);
+    const double lb = (2 * t - ta) / (tb * (tb - ta));
+    return la * a + lp * p + lb * b;
+  }
+  bool contains(double t) const { return t >= 0.5 * ta && t <= 0.5 * tb; }
+};
+
 }  // namespace carbonmesh::geometry
