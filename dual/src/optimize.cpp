@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "contact_term.hpp"
 #include "lbfgs.hpp"
 #include "surface_projector.hpp"
 
@@ -28,7 +29,8 @@ class DualEnergy {
              const std::vector<double>& target_cosines, const detail::SurfaceProjector& projector, double radius,
              std::vector<int> faces, const DualOptimizeSettings& s)
       : bonds_(bonds), angles_(angles), target_cosines_(target_cosines), projector_(projector), radius_(radius),
-        faces_(std::move(faces)), s_(s) {}
+        faces_(std::move(faces)), s_(s),
+        contacts_(faces_.size(), bonds, std::numbers::sqrt2 * s.bond, s.contact_weight) {}
 
   double scale(const Eigen::VectorXd& x) const {
     return s_.free_scale ? 1.0 + x[x.size() - 1] / radius_ : 1.0;
@@ -107,9 +109,11 @@ class DualEnergy {
       e += w * d2;
       gs += 2 * s_.surface_weight * s * d2;
     }
+    e += contacts_.add(px, s, pg, gs);
     if (s_.free_scale) pg[x.size() - 1] = gs / radius_;
     return e;
   }
+  std::size_t contact_rebuilds() const { return contacts_.rebuilds(); }
 
  private:
   const std::vector<AtomPair>& bonds_;
@@ -120,6 +124,7 @@ class DualEnergy {
   std::vector<int> faces_;  // the surface face each atom was last projected to (the walk's start)
   const DualOptimizeSettings& s_;
   std::vector<double> partial_;
+  detail::ContactTerm contacts_;
 };
 
 // The cosine of the target of every angle: the interior angle of a regular polygon of the size of the closed
@@ -204,11 +209,21 @@ void centre_and_radius(const TriMesh& surface, Vec3& centre, double& radius) {
   radius = area > 0 && r2 > 0 ? std::sqrt(r2 / area) : 1.0;
 }
 
+// Atoms at the centre of an angle outside [90, 150] degrees.
+std::size_t strained_atoms(std::size_t atoms, const std::vector<AtomTriple>& angles,
+                           const std::vector<double>& degrees) {
+  std::vector<char> strained(atoms, 0);
+  for (std::size_t a = 0; a < angles.size(); ++a)
+    if (degrees[a] < 90 || degrees[a] > 150) strained[static_cast<std::size_t>(angles[a][1])] = 1;
+  return static_cast<std::size_t>(std::count(strained.begin(), strained.end(), 1));
+}
+
 }  // namespace
 
 DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualOptimizeSettings& settings) {
   if (!(settings.bond > 0)) throw std::invalid_argument("optimize_dual: the bond length must be positive");
   if (settings.angle_weight < 0 || settings.surface_weight < 0 || settings.bond_window_weight < 0 ||
+      settings.contact_weight < 0 ||
       settings.bond_window < 0)
     throw std::invalid_argument("optimize_dual: weights must not be negative");
   const auto t0 = std::chrono::steady_clock::now();
@@ -221,6 +236,7 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   std::vector<Vec3> positions = dual.positions();
   r.bonds_before = sample_stats(bond_lengths(positions, dual.bonds));
   r.angles_before = sample_stats(angle_degrees(positions, angles));
+  r.strained_before = strained_atoms(dual.atoms(), angles, angle_degrees(positions, angles));
   // Seat every atom on its nearest face (the one global query per atom).
   std::vector<Vec3> closest;
   std::vector<int> faces;
@@ -300,7 +316,9 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   dual.set_positions(positions);
   dual.mesh.update_face_normals();
   r.bonds_after = sample_stats(bond_lengths(positions, dual.bonds));
-  r.angles_after = sample_stats(angle_degrees(positions, angles));
+  const std::vector<double> degrees_after = angle_degrees(positions, angles);
+  r.angles_after = sample_stats(degrees_after);
+  r.strained_after = strained_atoms(dual.atoms(), angles, degrees_after);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   spdlog::info("dual optimisation: {} iterations, {} evaluations ({}), bonds {:.4f}..{:.4f} (mean {:.4f}, std "
                "{:.4f}) -> {:.4f}..{:.4f} (mean {:.4f}, std {:.4f}), angles {:.2f}..{:.2f} -> {:.2f}..{:.2f} deg, "
@@ -317,6 +335,8 @@ nlohmann::json to_json(const DualOptimizeResult& r) {
           {"bonds_after", to_json(r.bonds_after)},
           {"angles_before_deg", to_json(r.angles_before)},
           {"angles_after_deg", to_json(r.angles_after)},
+          {"strained_atoms_before", r.strained_before},
+          {"strained_atoms_after", r.strained_after},
           {"surface_distance_max_before", r.surface_max_before},
           {"surface_distance_max_after", r.surface_max_after},
           {"surface_distance_rms_after", r.surface_rms_after},

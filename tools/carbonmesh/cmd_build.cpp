@@ -162,6 +162,16 @@ int run_build(BuildOptions& o) {
   o.optimize.bond = o.bond;
   const DualOptimizeResult optimized = optimize_dual(dual, surface, o.optimize);
   clock.stop("optimize");
+  std::size_t small_rings = 0;  // rings of 3 or 4 atoms: no place in an sp2 carbon net
+  for (const auto& [size, n] : dual.counts.ring_sizes)
+    if (size < 5) small_rings += n;
+  // Angles beyond 90..150 degrees at a few 5-7 pairs are normal; more than 1% of the atoms is not.
+  const bool strained = 100 * optimized.strained_after > dual.atoms();
+  if (strained || small_rings > 0)
+    spdlog::warn("{}: {} atoms with a bond angle outside 90..150 degrees, {} rings of fewer than 5 atoms: the "
+                 "surface may have features thinner than the bond scale (docs/algorithm.md, known limitations); "
+                 "inspect rings.ply, or build larger (--atoms, --size)",
+                 source, optimized.strained_after, small_rings);
 
   // Carbon structure and files.
   CarbonStructure structure = carbon_structure(dual);
@@ -225,6 +235,7 @@ int run_build(BuildOptions& o) {
       "atoms {} ({} C, {} H)  bonds {}  rings{}  open rings {}  three-bonded {:.2f}%\n"
       "bonds before  min {:.4f} mean {:.4f} std {:.4f} max {:.4f}  angles {:.2f}..{:.2f} (mean {:.2f})\n"
       "bonds after   min {:.4f} mean {:.4f} std {:.4f} max {:.4f}  angles {:.2f}..{:.2f} (mean {:.2f})\n"
+      "strained atoms (a bond angle outside 90..150 degrees): {} before, {} after ({:.3f}%)\n"
       "run: cd {} && lmp -in in.rebo   (or mpirun -np {} lmp -in in.rebo)\n",
       source, dir.string(), remeshed.long_edges, remeshed.short_edges, remeshed.percent_regular, remeshed.iterations,
       remeshed.after.genus, remeshed.after.boundary_loops, structure.atoms(), structure.count(Element::C),
@@ -233,7 +244,10 @@ int run_build(BuildOptions& o) {
       optimized.bonds_before.std, optimized.bonds_before.max, optimized.angles_before.min,
       optimized.angles_before.max, optimized.angles_before.mean, optimized.bonds_after.min,
       optimized.bonds_after.mean, optimized.bonds_after.std, optimized.bonds_after.max, optimized.angles_after.min,
-      optimized.angles_after.max, optimized.angles_after.mean, dir.string(), o.np);
+      optimized.angles_after.max, optimized.angles_after.mean, optimized.strained_before, optimized.strained_after,
+      structure.atoms() ? 100.0 * static_cast<double>(optimized.strained_after) / static_cast<double>(structure.atoms())
+                        : 0.0,
+      dir.string(), o.np);
   if (remeshed.topology_violation) {
     std::cerr << fmt::format("carbonmesh: error: {}: remeshing changed the surface type (genus {} components {} "
                              "borders {} -> genus {} components {} borders {}); the structure in {} is built on "
@@ -279,6 +293,9 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_option("--optimize-iterations", opt->optimize.max_iterations, "dual optimisation: L-BFGS iterations (0: off)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--angle-weight", opt->optimize.angle_weight, "dual optimisation: weight w_a of the angle term (dimensionless, relative to the bond term)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--contact-weight", opt->optimize.contact_weight,
+                  "dual optimisation: weight w_c of the contact term on non-bonded atoms closer than sqrt(2) b (per A^2; 0: off)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--surface-weight", opt->optimize.surface_weight, "dual optimisation: weight w_s of the surface-distance term (per A^2)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);

@@ -28,6 +28,10 @@ struct DualOptimizeSettings {
   // stretching is far stiffer than bending in real sp2 carbon, so bonds outside b +- delta pay 100 times more.
   double bond_window = 0.04;          // delta (Angstrom)
   double bond_window_weight = 100.0;  // w_h (0: off)
+  // Contact term: + w_c sum max(0, sqrt(2) b - |x_i - x_j|)^2 over non-bonded pairs. Keeps bond angles at 90
+  // degrees or more and other atoms sqrt(2) b apart where the surface is thinner than the bond scale (without
+  // it the bond term folds the net there: atoms 0.14 A apart on armadillo at 20000 atoms).
+  double contact_weight = 100.0;      // w_c (per Angstrom^2; 0: off)
   int max_iterations = 2000;          // L-BFGS iterations at most (0: only measure)
   double gradient_tolerance = 1e-4;   // converged when every |dE/dx| is below this (bonds then settle to ~1e-4 A)
   // ... or when E fell by less than energy_tolerance * E over the last 10 iterations (0: off). The tail after
@@ -43,6 +47,9 @@ struct DualOptimizeSettings {
 struct DualOptimizeResult {
   SampleStats bonds_before, bonds_after;    // bond lengths (Angstrom)
   SampleStats angles_before, angles_after;  // bond angles (degrees)
+  // Atoms with a bond angle outside [90, 150] degrees (sp2 rings of 5..8 atoms have 108..135): strained
+  // spots, e.g. where the surface has features thinner than the bond scale.
+  std::size_t strained_before = 0, strained_after = 0;
   double surface_max_before = 0, surface_max_after = 0;  // largest atom distance to the surface
   double surface_rms_after = 0;
   double energy_before = 0, energy_after = 0;

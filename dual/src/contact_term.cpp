@@ -1,0 +1,106 @@
+#include "contact_term.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+
+namespace carbonmesh::detail {
+
+ContactTerm::ContactTerm(std::size_t atoms, const std::vector<std::array<int, 2>>& bonds, double cutoff,
+                         double weight)
+    : atoms_(atoms), cutoff_(cutoff), weight_(weight), skin_(0.25 * cutoff), first_(atoms + 1, 0) {
+  for (const auto& b : bonds) ++first_[static_cast<std::size_t>(b[0]) + 1], ++first_[static_cast<std::size_t>(b[1]) + 1];
+  for (std::size_t i = 0; i < atoms; ++i) first_[i + 1] += first_[i];
+  neighbours_.resize(static_cast<std::size_t>(first_[atoms]));
+  std::vector<int> fill(first_.begin(), first_.end() - 1);
+  for (const auto& b : bonds) {
+    neighbours_[static_cast<std::size_t>(fill[static_cast<std::size_t>(b[0])]++)] = b[1];
+    neighbours_[static_cast<std::size_t>(fill[static_cast<std::size_t>(b[1])]++)] = b[0];
+  }
+}
+
+bool ContactTerm::bonded(int i, int j) const {
+  for (int k = first_[static_cast<std::size_t>(i)]; k < first_[static_cast<std::size_t>(i) + 1]; ++k)
+    if (neighbours_[static_cast<std::size_t>(k)] == j) return true;
+  return false;
+}
+
+// Every non-bonded pair closer than (r_c + skin) / s in y, found with a grid of that cell size; pairs in
+// atom order (deterministic).
+void ContactTerm::rebuild(const double* y, double s) {
+  ++rebuilds_;
+  built_at_.assign(y, y + 3 * atoms_);
+  built_scale_ = s;
+  pairs_.clear();
+  if (atoms_ == 0) return;
+  const double h = (cutoff_ + skin_) / s;
+  double lo[3] = {y[0], y[1], y[2]};
+  for (std::size_t i = 0; i < atoms_; ++i)
+    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], y[3 * i + static_cast<std::size_t>(c)]);
+  auto cell = [&](std::size_t i, int c) {
+    return static_cast<std::int64_t>(std::floor((y[3 * i + static_cast<std::size_t>(c)] - lo[c]) / h));
+  };
+  auto key = [](std::int64_t a, std::int64_t b, std::int64_t c) { return (a << 42) | (b << 21) | c; };
+  std::vector<std::pair<std::int64_t, int>> sorted(atoms_);
+  for (std::size_t i = 0; i < atoms_; ++i) sorted[i] = {key(cell(i, 0), cell(i, 1), cell(i, 2)), static_cast<int>(i)};
+  std::sort(sorted.begin(), sorted.end());
+  const double h2 = h * h;
+  for (std::size_t i = 0; i < atoms_; ++i) {
+    const std::int64_t ci[3] = {cell(i, 0), cell(i, 1), cell(i, 2)};
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          if (ci[0] + dx < 0 || ci[1] + dy < 0 || ci[2] + dz < 0) continue;
+          const std::int64_t k = key(ci[0] + dx, ci[1] + dy, ci[2] + dz);
+          auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(k, -1));
+          for (; it != sorted.end() && it->first == k; ++it) {
+            const int j = it->second;
+            if (j <= static_cast<int>(i) || bonded(static_cast<int>(i), j)) continue;
+            const double* p = y + 3 * i;
+            const double* q = y + 3 * static_cast<std::size_t>(j);
+            const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
+            if (d2 < h2) pairs_.push_back({static_cast<int>(i), j});
+          }
+        }
+  }
+  std::sort(pairs_.begin(), pairs_.end());
+}
+
+double ContactTerm::add(const double* y, double s, double* gradient, double& gradient_scale) {
+  if (weight_ <= 0 || atoms_ == 0) return 0;
+  // A pair outside the list was at least (r_c + skin) apart: it comes within r_c only after its atoms moved
+  // by skin between them (2 max |dy| s) or the scale shrank; rebuild before that can happen.
+  bool stale = built_at_.size() != 3 * atoms_;
+  if (!stale) {
+    double moved2 = 0;
+    for (std::size_t i = 0; i < atoms_; ++i) {
+      const double a = y[3 * i] - built_at_[3 * i], b = y[3 * i + 1] - built_at_[3 * i + 1],
+                   c = y[3 * i + 2] - built_at_[3 * i + 2];
+      moved2 = std::max(moved2, a * a + b * b + c * c);
+    }
+    const double shrink = std::max(0.0, built_scale_ - s) / built_scale_ * (cutoff_ + skin_);
+    stale = 2 * std::sqrt(moved2) * std::max(s, built_scale_) + shrink >= skin_;
+  }
+  if (stale) rebuild(y, s);
+  double e = 0;
+  for (const auto& [i, j] : pairs_) {
+    const double* p = y + 3 * static_cast<std::size_t>(i);
+    const double* q = y + 3 * static_cast<std::size_t>(j);
+    const double r0 = p[0] - q[0], r1 = p[1] - q[1], r2 = p[2] - q[2];
+    const double length = std::sqrt(r0 * r0 + r1 * r1 + r2 * r2);
+    const double gap = cutoff_ - s * length;
+    if (gap <= 0 || length == 0) continue;
+    e += weight_ * gap * gap;
+    const double de = -2 * weight_ * gap;  // dE/d(s length)
+    gradient_scale += de * length;
+    const double k = de * s / length;
+    double* gp = gradient + 3 * static_cast<std::size_t>(i);
+    double* gq = gradient + 3 * static_cast<std::size_t>(j);
+    gp[0] += k * r0, gp[1] += k * r1, gp[2] += k * r2;
+    gq[0] -= k * r0, gq[1] -= k * r1, gq[2] -= k * r2;
+  }
+  return e;
+}
+
+}  // namespace carbonmesh::detail
