@@ -320,6 +320,7 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   r.angles_after = sample_stats(degrees_after);
   r.strained_after = strained_atoms(dual.atoms(), angles, degrees_after);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  spdlog::debug("dual optimisation: contact pair list built {} times", energy.contact_rebuilds());
   spdlog::info("dual optimisation: {} iterations, {} evaluations ({}), bonds {:.4f}..{:.4f} (mean {:.4f}, std "
                "{:.4f}) -> {:.4f}..{:.4f} (mean {:.4f}, std {:.4f}), angles {:.2f}..{:.2f} -> {:.2f}..{:.2f} deg, "
                "surface scale {:.4f}, distance max {:.4f}, {:.2f} s",
