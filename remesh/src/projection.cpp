@@ -237,23 +237,19 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
                                      t.points[static_cast<std::size_t>(tri[1])],
                                      t.points[static_cast<std::size_t>(tri[2])]);
   };
-  // Faces in order of their distance bound, projected onto lazily: a face whose bound exceeds the best
-  // score so far cannot win (|V - P| <= score), and neither can any later one. The winner is the same as
-  // scoring every candidate: the smallest score, ties to the smaller |V - P|, then the smaller face index.
-  // (Selection instead of a sort: usually only the first one or two faces are projected onto.)
+  // The winner is the candidate with the smallest score, ties to the smaller |V - P|, then the smaller face
+  // index: a strict order, so the faces may be scored in any order. A face whose distance bound exceeds the
+  // best score so far cannot win (|V - P| <= score) and is not projected onto. The face with the smallest
+  // bound goes first (it usually wins, so most others are skipped by their bound); sorting all of them cost
+  // more than the projections it saved.
   Vec3 best = v;
   double best_score = std::numeric_limits<double>::infinity(), best_distance = best_score;
   int best_face = -1;
-  for (std::size_t next = 0; next < bounded.size(); ++next) {
-    std::size_t pick = next;
-    for (std::size_t j = next + 1; j < bounded.size(); ++j)
-      if (before(bounded[j], bounded[pick])) pick = j;
-    std::swap(bounded[next], bounded[pick]);
-    const auto [lb, f] = bounded[next];
-    if (lb > best_score) break;
+  auto consider = [&](double lb, int f) {
+    if (lb > best_score) return;
     const Vec3 p = closest(f);
     const double distance = (v - p).norm();
-    if (distance > best_score) continue;
+    if (distance > best_score) return;
     // Neighbourhood-aware distance (section 4.5): |V - P| plus how much the edges to the neighbours change.
     double score = distance;
     for (std::size_t j = 0; j < neighbors.size() && score <= best_score; ++j)
@@ -265,7 +261,14 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
       best_face = f;
       best = p;
     }
-  }
+  };
+  if (bounded.empty()) return best;
+  std::size_t first = 0;
+  for (std::size_t j = 1; j < bounded.size(); ++j)
+    if (before(bounded[j], bounded[first])) first = j;
+  consider(bounded[first].first, bounded[first].second);
+  for (std::size_t j = 0; j < bounded.size(); ++j)
+    if (j != first) consider(bounded[j].first, bounded[j].second);
   return best;
 }
 
