@@ -125,6 +125,25 @@ TEST(Remesher, RegularizeKeepsTheIntervalAndRaisesRegularity) {
 TEST(Remesher, RefinedSphereWithMeanEdge1Converges) { expect_converges(sphere(4, 1.0)); }
 TEST(Remesher, RefinedTorusWithMeanEdge1Converges) { expect_converges(torus(1.0, 1.0)); }
 
+// An input far coarser than the interval (a torus of mean edge 6, four times emax): longest-edge bisection
+// first, then the loop; every edge inside, genus kept, every vertex still on the input surface.
+TEST(Remesher, CoarseInputIsBisectedAndConverges) {
+  TriMesh mesh = scaled(make_torus({10.0, 4.0, 0.0}), 6.0);
+  const TriMesh input = mesh;
+  const Topology before = topology(mesh);
+  RemeshSettings settings;
+  settings.fit_surface = false;  // vertices stay on the input
+  const RemeshResult result = remesh(mesh, settings);
+  EXPECT_GT(result.bisected_vertices, 0u);
+  EXPECT_TRUE(result.converged);
+  const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  EXPECT_EQ(topology(mesh).genus, before.genus);
+  HausdorffSettings h;
+  h.samples = 20000;
+  EXPECT_LT(hausdorff_distance(mesh, input, h).max, 0.5);
+}
+
 // The surface fit: on a finely tessellated sphere (radius 10), remeshing into [1.2, 1.8] with the fit gives a
 // clearly smaller distance to the input than with every vertex on the input, and keeps every edge inside.
 TEST(SurfaceFit, HalvesTheChordErrorAndKeepsEveryEdgeInside) {

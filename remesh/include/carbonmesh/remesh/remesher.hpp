@@ -50,6 +50,7 @@ struct RemeshResult {
   bool converged = false;  // no long and no short edge left
   int iterations = 0;
   bool post_processed = false;
+  std::size_t bisected_vertices = 0;  // vertices added by the longest-edge bisection of an input with mean edge > 2 emax
   std::size_t long_edges = 0, short_edges = 0;
   double percent_regular = 0;
   double percent_eval_gt1 = 0;  // vertices with (ideal - valence)^2 > 1
