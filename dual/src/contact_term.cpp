@@ -26,41 +26,54 @@ bool ContactTerm::bonded(int i, int j) const {
   return false;
 }
 
-// Every non-bonded pair closer than (r_c + skin) / s in y, found with a grid of that cell size; pairs in
-// atom order (deterministic).
+// Every non-bonded pair closer than (r_c + skin) / s in y, found with a uniform grid of at least that cell size
+// (larger where the structure is sparse, so the grid has at most about 4 cells per atom); pairs in atom order
+// (deterministic).
 void ContactTerm::rebuild(const double* y, double s) {
   ++rebuilds_;
   built_at_.assign(y, y + 3 * atoms_);
   built_scale_ = s;
   pairs_.clear();
   if (atoms_ == 0) return;
-  const double h = (cutoff_ + skin_) / s;
-  double lo[3] = {y[0], y[1], y[2]};
+  const double reach = (cutoff_ + skin_) / s;
+  double lo[3] = {y[0], y[1], y[2]}, hi[3] = {y[0], y[1], y[2]};
   for (std::size_t i = 0; i < atoms_; ++i)
-    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], y[3 * i + static_cast<std::size_t>(c)]);
-  auto cell = [&](std::size_t i, int c) {
-    return static_cast<std::int64_t>(std::floor((y[3 * i + static_cast<std::size_t>(c)] - lo[c]) / h));
+    for (std::size_t c = 0; c < 3; ++c) lo[c] = std::min(lo[c], y[3 * i + c]), hi[c] = std::max(hi[c], y[3 * i + c]);
+  double h = reach;
+  std::int64_t dims[3];
+  for (;;) {
+    for (std::size_t c = 0; c < 3; ++c) dims[c] = static_cast<std::int64_t>((hi[c] - lo[c]) / h) + 1;
+    if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) <=
+        4.0 * static_cast<double>(atoms_) + 64)
+      break;
+    h *= 1.25;
+  }
+  auto coordinate = [&](std::size_t i, std::size_t c) {
+    return std::min(static_cast<std::int64_t>((y[3 * i + c] - lo[c]) / h), dims[c] - 1);
   };
-  auto key = [](std::int64_t a, std::int64_t b, std::int64_t c) { return (a << 42) | (b << 21) | c; };
-  std::vector<std::pair<std::int64_t, int>> sorted(atoms_);
-  for (std::size_t i = 0; i < atoms_; ++i) sorted[i] = {key(cell(i, 0), cell(i, 1), cell(i, 2)), static_cast<int>(i)};
-  std::sort(sorted.begin(), sorted.end());
-  const double h2 = h * h;
+  const std::size_t cells = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
+  std::vector<int> start(cells + 1, 0), cell_of(atoms_), members(atoms_);
   for (std::size_t i = 0; i < atoms_; ++i) {
-    const std::int64_t ci[3] = {cell(i, 0), cell(i, 1), cell(i, 2)};
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy)
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          if (ci[0] + dx < 0 || ci[1] + dy < 0 || ci[2] + dz < 0) continue;
-          const std::int64_t k = key(ci[0] + dx, ci[1] + dy, ci[2] + dz);
-          auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(k, -1));
-          for (; it != sorted.end() && it->first == k; ++it) {
-            const int j = it->second;
-            if (j <= static_cast<int>(i) || bonded(static_cast<int>(i), j)) continue;
-            const double* p = y + 3 * i;
+    cell_of[i] = static_cast<int>((coordinate(i, 0) * dims[1] + coordinate(i, 1)) * dims[2] + coordinate(i, 2));
+    ++start[static_cast<std::size_t>(cell_of[i]) + 1];
+  }
+  for (std::size_t k = 0; k < cells; ++k) start[k + 1] += start[k];
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < atoms_; ++i) members[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of[i])]++)] = static_cast<int>(i);
+  const double reach2 = reach * reach;
+  for (std::size_t i = 0; i < atoms_; ++i) {
+    const std::int64_t ci[3] = {coordinate(i, 0), coordinate(i, 1), coordinate(i, 2)};
+    const double* p = y + 3 * i;
+    for (std::int64_t x = std::max<std::int64_t>(ci[0] - 1, 0); x <= std::min(ci[0] + 1, dims[0] - 1); ++x)
+      for (std::int64_t z1 = std::max<std::int64_t>(ci[1] - 1, 0); z1 <= std::min(ci[1] + 1, dims[1] - 1); ++z1)
+        for (std::int64_t z2 = std::max<std::int64_t>(ci[2] - 1, 0); z2 <= std::min(ci[2] + 1, dims[2] - 1); ++z2) {
+          const std::size_t cell = static_cast<std::size_t>((x * dims[1] + z1) * dims[2] + z2);
+          for (int k = start[cell]; k < start[cell + 1]; ++k) {
+            const int j = members[static_cast<std::size_t>(k)];
+            if (j <= static_cast<int>(i)) continue;
             const double* q = y + 3 * static_cast<std::size_t>(j);
             const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
-            if (d2 < h2) pairs_.push_back({static_cast<int>(i), j});
+            if (d2 < reach2 && !bonded(static_cast<int>(i), j)) pairs_.push_back({static_cast<int>(i), j});
           }
         }
   }
