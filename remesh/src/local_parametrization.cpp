@@ -93,78 +93,6 @@ void shape_preserving_weights(const Vec3& center, const std::vector<Vec3>& ring,
   for (auto& x : lambda) x /= sum;
 }
 
-// Eigen's PartialPivLU solve of a system of up to kUnblockedLimit unknowns with two right-hand sides, written
-// out with the same operations in the same order (so the same bits): the unblocked factorisation Eigen uses
-// up to that size (pivot: the first largest magnitude; column scaled by division; rank-1 update), the row
-// transpositions, then the triangular solves of triangular_solve_matrix in panels of kPanel columns: inside
-// a panel, column-wise updates; below (lower) or above (upper) it, the panel's contribution summed from 0
-// and subtracted at once (gebp with alpha = -1). Eigen's generic path costs about 5 times as many
-// instructions at these sizes (blocking set-up, packing). `a` is column-major count x count, `b` two
-// columns of count; the solution replaces b.
-constexpr int kUnblockedLimit = 16;
-constexpr int kPanel = 4;  // Eigen's SmallPanelWidth for double without FMA: max(mr, nr) = 4
-
-void small_lu_factor(int count, double* a, int* transposition) {
-  auto at = [&](int r, int c) -> double& { return a[static_cast<std::size_t>(c) * static_cast<std::size_t>(count) + static_cast<std::size_t>(r)]; };
-  for (int k = 0; k < count; ++k) {
-    int pivot = k;
-    double biggest = std::abs(at(k, k));
-    for (int r = k + 1; r < count; ++r)
-      if (std::abs(at(r, k)) > biggest) biggest = std::abs(at(r, k)), pivot = r;
-    transposition[k] = pivot;
-    if (biggest != 0) {
-      if (pivot != k)
-        for (int c = 0; c < count; ++c) std::swap(at(k, c), at(pivot, c));
-      const double d = at(k, k);
-      for (int r = k + 1; r < count; ++r) at(r, k) /= d;
-    }
-    for (int c = k + 1; c < count; ++c)
-      for (int r = k + 1; r < count; ++r) at(r, c) -= at(r, k) * at(k, c);
-  }
-}
-
-void small_lu_solve(int count, const double* a, const int* transposition, double* b) {
-  auto at = [&](int r, int c) { return a[static_cast<std::size_t>(c) * static_cast<std::size_t>(count) + static_cast<std::size_t>(r)]; };
-  auto x = [&](int r, int j) -> double& { return b[static_cast<std::size_t>(j) * static_cast<std::size_t>(count) + static_cast<std::size_t>(r)]; };
-  for (int k = 0; k < count; ++k)
-    if (transposition[k] != k)
-      for (int j = 0; j < 2; ++j) std::swap(x(k, j), x(transposition[k], j));
-  // Unit lower: panels from the top.
-  for (int k1 = 0; k1 < count; k1 += kPanel) {
-    const int width = std::min(count - k1, kPanel);
-    for (int k = 0; k < width; ++k) {
-      const int i = k1 + k;
-      for (int j = 0; j < 2; ++j)
-        for (int r = i + 1; r < k1 + width; ++r) x(r, j) -= x(i, j) * at(r, i);
-    }
-    for (int j = 0; j < 2; ++j)
-      for (int r = k1 + width; r < count; ++r) {
-        double sum = 0;
-        for (int c = k1; c < k1 + width; ++c) sum += at(r, c) * x(c, j);
-        x(r, j) += -sum;
-      }
-  }
-  // Upper: panels from the bottom.
-  for (int k1 = 0; k1 < count; k1 += kPanel) {
-    const int width = std::min(count - k1, kPanel);
-    const int first = count - k1 - width;  // the panel's columns: first .. first + width - 1
-    for (int k = 0; k < width; ++k) {
-      const int i = count - k1 - k - 1;
-      const double inverse = 1.0 / at(i, i);
-      for (int j = 0; j < 2; ++j) {
-        x(i, j) *= inverse;
-        for (int r = first; r < i; ++r) x(r, j) -= x(i, j) * at(r, i);
-      }
-    }
-    for (int j = 0; j < 2; ++j)
-      for (int r = 0; r < first; ++r) {
-        double sum = 0;
-        for (int c = first; c < first + width; ++c) sum += at(r, c) * x(c, j);
-        x(r, j) += -sum;
-      }
-  }
-}
-
 }  // namespace
 
 RingWeights ring_weights(const TriMesh& mesh, ParametrizationWeights weights) {
@@ -384,14 +312,8 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
     using Rhs = Eigen::Matrix<double, Eigen::Dynamic, 2, 0, kDenseLimit, 2>;
     Dense a = Dense::Zero(count, count);
     for (const auto& t : triplets) a(t.row(), t.col()) += t.value();
-    Rhs solved = rhs;
-    if (count <= kUnblockedLimit) {
-      int transposition[kUnblockedLimit];
-      small_lu_factor(count, a.data(), transposition);
-      small_lu_solve(count, a.data(), transposition, solved.data());
-    } else {
-      solved = Eigen::PartialPivLU<Dense>(a).solve(solved);
-    }
+    const Rhs b = rhs;
+    const Rhs solved = Eigen::PartialPivLU<Dense>(a).solve(b);
     if (!solved.allFinite()) return false;
     for (std::size_t i = 0; i < n; ++i)
       if (unknown[i] >= 0) uv[i] = solved.row(unknown[i]).transpose();
