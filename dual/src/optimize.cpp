@@ -235,8 +235,9 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   DualOptimizeResult r;
   std::vector<Vec3> positions = dual.positions();
   r.bonds_before = sample_stats(bond_lengths(positions, dual.bonds));
-  r.angles_before = sample_stats(angle_degrees(positions, angles));
-  r.strained_before = strained_atoms(dual.atoms(), angles, angle_degrees(positions, angles));
+  const std::vector<double> degrees_before = angle_degrees(positions, angles);
+  r.angles_before = sample_stats(degrees_before);
+  r.strained_before = strained_atoms(dual.atoms(), angles, degrees_before);
   // Seat every atom on its nearest face (the one global query per atom).
   std::vector<Vec3> closest;
   std::vector<int> faces;
