@@ -1,8 +1,9 @@
 #include "contact_term.hpp"
 
+#include "carbonmesh/remesh/cell_grid.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <numeric>
 
 namespace carbonmesh::detail {
@@ -26,9 +27,8 @@ bool ContactTerm::bonded(int i, int j) const {
   return false;
 }
 
-// Every non-bonded pair closer than (r_c + skin) / s in y, found with a uniform grid of at least that cell size
-// (larger where the structure is sparse, so the grid has at most about 4 cells per atom); pairs in atom order
-// (deterministic).
+// Every non-bonded pair closer than (r_c + skin) / s in y, from a CellGrid of at least that cell size (larger
+// where the structure is sparse: at most about 4 cells per atom); pairs in atom order (deterministic).
 void ContactTerm::rebuild(const double* y, double s) {
   ++rebuilds_;
   built_at_.assign(y, y + 3 * atoms_);
@@ -36,44 +36,24 @@ void ContactTerm::rebuild(const double* y, double s) {
   pairs_.clear();
   if (atoms_ == 0) return;
   const double reach = (cutoff_ + skin_) / s;
-  double lo[3] = {y[0], y[1], y[2]}, hi[3] = {y[0], y[1], y[2]};
-  for (std::size_t i = 0; i < atoms_; ++i)
-    for (std::size_t c = 0; c < 3; ++c) lo[c] = std::min(lo[c], y[3 * i + c]), hi[c] = std::max(hi[c], y[3 * i + c]);
-  double h = reach;
-  std::int64_t dims[3];
-  for (;;) {
-    for (std::size_t c = 0; c < 3; ++c) dims[c] = static_cast<std::int64_t>((hi[c] - lo[c]) / h) + 1;
-    if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) <=
-        4.0 * static_cast<double>(atoms_) + 64)
-      break;
-    h *= 1.25;
-  }
-  auto coordinate = [&](std::size_t i, std::size_t c) {
-    return std::min(static_cast<std::int64_t>((y[3 * i + c] - lo[c]) / h), dims[c] - 1);
-  };
-  const std::size_t cells = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
-  std::vector<int> start(cells + 1, 0), cell_of(atoms_), members(atoms_);
-  for (std::size_t i = 0; i < atoms_; ++i) {
-    cell_of[i] = static_cast<int>((coordinate(i, 0) * dims[1] + coordinate(i, 1)) * dims[2] + coordinate(i, 2));
-    ++start[static_cast<std::size_t>(cell_of[i]) + 1];
-  }
-  for (std::size_t k = 0; k < cells; ++k) start[k + 1] += start[k];
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < atoms_; ++i) members[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of[i])]++)] = static_cast<int>(i);
+  std::vector<Vec3> points(atoms_);
+  std::vector<int> ids(atoms_);
+  for (std::size_t i = 0; i < atoms_; ++i) points[i] = Vec3(y[3 * i], y[3 * i + 1], y[3 * i + 2]);
+  std::iota(ids.begin(), ids.end(), 0);
+  const CellGrid grid(points, ids, reach, 4.0 * static_cast<double>(atoms_) + 64);
+  const auto& size = grid.size();
   const double reach2 = reach * reach;
   for (std::size_t i = 0; i < atoms_; ++i) {
-    const std::int64_t ci[3] = {coordinate(i, 0), coordinate(i, 1), coordinate(i, 2)};
-    const double* p = y + 3 * i;
-    for (std::int64_t x = std::max<std::int64_t>(ci[0] - 1, 0); x <= std::min(ci[0] + 1, dims[0] - 1); ++x)
-      for (std::int64_t z1 = std::max<std::int64_t>(ci[1] - 1, 0); z1 <= std::min(ci[1] + 1, dims[1] - 1); ++z1)
-        for (std::int64_t z2 = std::max<std::int64_t>(ci[2] - 1, 0); z2 <= std::min(ci[2] + 1, dims[2] - 1); ++z2) {
-          const std::size_t cell = static_cast<std::size_t>((x * dims[1] + z1) * dims[2] + z2);
-          for (int k = start[cell]; k < start[cell + 1]; ++k) {
-            const int j = members[static_cast<std::size_t>(k)];
-            if (j <= static_cast<int>(i)) continue;
-            const double* q = y + 3 * static_cast<std::size_t>(j);
-            const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
-            if (d2 < reach2 && !bonded(static_cast<int>(i), j)) pairs_.push_back({static_cast<int>(i), j});
+    const Vec3& p = points[i];
+    const int c[3] = {grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)};
+    for (int x = std::max(c[0] - 1, 0); x <= std::min(c[0] + 1, size[0] - 1); ++x)
+      for (int z1 = std::max(c[1] - 1, 0); z1 <= std::min(c[1] + 1, size[1] - 1); ++z1)
+        for (int z2 = std::max(c[2] - 1, 0); z2 <= std::min(c[2] + 1, size[2] - 1); ++z2) {
+          const std::size_t cell = grid.cell_index(x, z1, z2);
+          for (int k = grid.begin(cell); k < grid.begin(cell + 1); ++k) {
+            const int j = grid.id(k);
+            if (j > static_cast<int>(i) && (p - grid.point(k)).sqrnorm() < reach2 && !bonded(static_cast<int>(i), j))
+              pairs_.push_back({static_cast<int>(i), j});
           }
         }
   }

@@ -75,15 +75,10 @@ Vec3 low_pass_position(const TriMesh& mesh, TriMesh::VertexHandle v, int kl, Par
   if (kli < kl) collect_k_star(mesh, v, kli, star, scratch);
   thread_local std::vector<Eigen::Vector2d> uv;
   if (!compute_parametrization(mesh, star, weights, scratch, uv)) return tangential_laplacian(mesh, star);
-  thread_local std::vector<double> ring_weight;  // 1 / 2^(star-1) per star number, without a call per vertex
-  if (ring_weight.size() < static_cast<std::size_t>(kli) + 1) {
-    ring_weight.resize(static_cast<std::size_t>(kli) + 1);
-    for (int r = 0; r <= kli; ++r) ring_weight[static_cast<std::size_t>(r)] = 1.0 / std::ldexp(1.0, r - 1);
-  }
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
   double fat = 0;
   for (std::size_t j = 1; j < star.vertices.size(); ++j) {
-    const double w = ring_weight[static_cast<std::size_t>(star.ring[j])];
+    const double w = 2.0 / static_cast<double>(1u << star.ring[j]);  // 1 / 2^(star-1), exact
     x += w * uv[j];
     fat += w;
   }

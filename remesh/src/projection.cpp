@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "carbonmesh/remesh/cell_grid.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 
 namespace carbonmesh {
@@ -24,40 +25,15 @@ bool before(const std::pair<double, int>& a, const std::pair<double, int>& b) {
 // a priority queue.
 class PointGrid {
  public:
-  PointGrid(const std::vector<Vec3>& points, const std::vector<std::size_t>& used, double mean_edge) {
-    if (used.empty()) return;
-    Vec3 lo = points[used[0]], hi = lo;
-    for (std::size_t i : used) lo.minimize(points[i]), hi.maximize(points[i]);
-    cell_ = 2 * mean_edge;
-    const double largest = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300});
-    if (!(cell_ > largest * 1e-6)) cell_ = largest * 1e-3;
-    const auto limit = static_cast<std::int64_t>(8 * used.size() + 1000);  // cells at most
-    for (;; cell_ *= 1.25) {
-      std::int64_t cells = 1;
-      for (int a = 0; a < 3; ++a) cells *= size_[a] = static_cast<int>((hi[a] - lo[a]) / cell_) + 1;
-      if (cells <= limit) break;
-    }
-    origin_ = lo;
-    begin_.assign(static_cast<std::size_t>(size_[0]) * size_[1] * size_[2] + 1, 0);
-    std::vector<std::size_t> cell_of(used.size());
-    for (std::size_t j = 0; j < used.size(); ++j) ++begin_[(cell_of[j] = cell(points[used[j]])) + 1];
-    for (std::size_t c = 0; c + 1 < begin_.size(); ++c) begin_[c + 1] += begin_[c];
-    index_.resize(used.size());
-    points_.resize(used.size());
-    std::vector<int> fill(begin_.begin(), begin_.end() - 1);
-    for (std::size_t j = 0; j < used.size(); ++j) {  // in index order within a cell
-      const auto at = static_cast<std::size_t>(fill[cell_of[j]]++);
-      index_[at] = static_cast<int>(used[j]);
-      points_[at] = points[used[j]];
-    }
-  }
+  PointGrid(const std::vector<Vec3>& points, const std::vector<int>& used, double mean_edge)
+      : grid_(points, used, 2 * mean_edge, 8.0 * static_cast<double>(used.size()) + 1000) {}
 
   // The min(k, points) nearest points to q as (squared distance, index), ascending.
   void nearest(const Vec3& q, std::size_t k, std::vector<std::pair<double, int>>& out) const {
     out.clear();
-    if (index_.empty() || k == 0) return;
+    if (grid_.empty() || k == 0) return;
     std::array<int, 3> c{};
-    for (int a = 0; a < 3; ++a) c[a] = coordinate(q, a);
+    for (int a = 0; a < 3; ++a) c[a] = grid_.coordinate(q, a);
     for (int r = 0;; ++r) {
       visit_ring(q, c, r, k, out);
       const double bound = unvisited_distance(q, c, r);
@@ -67,48 +43,32 @@ class PointGrid {
   }
 
  private:
-  Vec3 origin_{0, 0, 0};
-  double cell_ = 1;
-  std::array<int, 3> size_{0, 0, 0};
-  std::vector<int> begin_, index_;  // CSR: the points of each cell
-  std::vector<Vec3> points_;        // their positions, in the same order
-
-  int coordinate(const Vec3& p, int a) const {
-    const double x = std::floor((p[a] - origin_[a]) / cell_);
-    if (!(x > 0)) return 0;  // also NaN
-    return x >= size_[a] - 1 ? size_[a] - 1 : static_cast<int>(x);
-  }
-  std::size_t cell(const Vec3& p) const {
-    return (static_cast<std::size_t>(coordinate(p, 0)) * static_cast<std::size_t>(size_[1]) +
-            static_cast<std::size_t>(coordinate(p, 1))) * static_cast<std::size_t>(size_[2]) +
-           static_cast<std::size_t>(coordinate(p, 2));
-  }
+  CellGrid grid_;
 
   // The points of cells at Chebyshev distance r from cell c into the ascending list `out` of at most k.
   void visit_ring(const Vec3& q, const std::array<int, 3>& c, int r, std::size_t k,
                   std::vector<std::pair<double, int>>& out) const {
-    const int x0 = std::max(0, c[0] - r), x1 = std::min(size_[0] - 1, c[0] + r);
-    const int y0 = std::max(0, c[1] - r), y1 = std::min(size_[1] - 1, c[1] + r);
+    const auto& size = grid_.size();
+    const int x0 = std::max(0, c[0] - r), x1 = std::min(size[0] - 1, c[0] + r);
+    const int y0 = std::max(0, c[1] - r), y1 = std::min(size[1] - 1, c[1] + r);
     for (int x = x0; x <= x1; ++x)
       for (int y = y0; y <= y1; ++y) {
         const bool side = std::abs(x - c[0]) == r || std::abs(y - c[1]) == r;
         const int step = side || r == 0 ? 1 : 2 * r;
         for (int z = c[2] - r; z <= c[2] + r; z += step) {
-          if (z < 0 || z >= size_[2]) continue;
-          const std::size_t id =
-              (static_cast<std::size_t>(x) * static_cast<std::size_t>(size_[1]) + static_cast<std::size_t>(y)) *
-                  static_cast<std::size_t>(size_[2]) + static_cast<std::size_t>(z);
-          for (int j = begin_[id]; j < begin_[id + 1]; ++j) insert(q, j, k, out);
+          if (z < 0 || z >= size[2]) continue;
+          const std::size_t id = grid_.cell_index(x, y, z);
+          for (int j = grid_.begin(id); j < grid_.begin(id + 1); ++j) insert(q, j, k, out);
         }
       }
   }
 
   void insert(const Vec3& q, int j, std::size_t k, std::vector<std::pair<double, int>>& out) const {
-    const Vec3& p = points_[static_cast<std::size_t>(j)];
+    const Vec3& p = grid_.point(j);
     double d = (q[0] - p[0]) * (q[0] - p[0]);
     d += (q[1] - p[1]) * (q[1] - p[1]);
     d += (q[2] - p[2]) * (q[2] - p[2]);
-    const std::pair<double, int> entry(d, index_[static_cast<std::size_t>(j)]);
+    const std::pair<double, int> entry(d, grid_.id(j));
     if (out.size() == k) {
       if (!before(entry, out.back())) return;
     } else {
@@ -122,12 +82,15 @@ class PointGrid {
   // A lower bound of the distance from q to the cells outside the block of rings 0..r around c (infinity when
   // the block covers the grid), slightly shrunk against rounding in the cell coordinates.
   double unvisited_distance(const Vec3& q, const std::array<int, 3>& c, int r) const {
+    const auto& size = grid_.size();
+    const Vec3& origin = grid_.origin();
+    const double cell = grid_.cell();
     double bound = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
-      if (c[a] - r > 0) bound = std::min(bound, q[a] - (origin_[a] + (c[a] - r) * cell_));
-      if (c[a] + r < size_[a] - 1) bound = std::min(bound, origin_[a] + (c[a] + r + 1) * cell_ - q[a]);
+      if (c[a] - r > 0) bound = std::min(bound, q[a] - (origin[a] + (c[a] - r) * cell));
+      if (c[a] + r < size[a] - 1) bound = std::min(bound, origin[a] + (c[a] + r + 1) * cell - q[a]);
     }
-    return bound == std::numeric_limits<double>::infinity() ? bound : std::max(0.0, bound - 1e-9 * cell_);
+    return bound == std::numeric_limits<double>::infinity() ? bound : std::max(0.0, bound - 1e-9 * cell);
   }
 };
 
@@ -189,9 +152,9 @@ ProjectionTarget::ProjectionTarget(const TriMesh& target) : impl_(std::make_uniq
   for (std::size_t f = 0; f < t.faces.size(); ++f)
     for (int v : t.faces[f]) t.vertex_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(f);
   // Only vertices used by a face go into the grid.
-  std::vector<std::size_t> used;
+  std::vector<int> used;
   for (std::size_t i = 0; i < n; ++i)
-    if (count[i + 1] > count[i]) used.push_back(i);
+    if (count[i + 1] > count[i]) used.push_back(static_cast<int>(i));
   double edge_sum = 0;
   for (const auto& tri : t.faces)
     for (std::size_t j = 0; j < 3; ++j)

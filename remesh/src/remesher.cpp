@@ -1,6 +1,7 @@
 // Algorithm 1 (UniformRemeshing): the interval-constraining remesher.
 #include "carbonmesh/remesh/remesher.hpp"
 
+#include <OpenMesh/Tools/Subdivider/Uniform/LongestEdgeT.hh>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -8,7 +9,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <OpenMesh/Tools/Subdivider/Uniform/LongestEdgeT.hh>
 #include <nlohmann/json.hpp>
 
 #include "carbonmesh/remesh/error.hpp"
