@@ -140,6 +140,13 @@ class ProjectionTarget {
 void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false);
 void forget_projection(TriMesh& mesh);
 
+// ---- spatial_order.cpp ----------------------------------------------------------------------------------
+
+// Rebuilds `mesh` with its vertices in Morton order of their positions and its faces by first vertex, so
+// that surface neighbours are memory neighbours (deleted elements dropped; the projection memory kept).
+// Returns false and leaves the mesh unchanged if a face cannot be re-added.
+bool spatial_order(TriMesh& mesh);
+
 // ---- regularize (correct_valence.cpp): valence optimisation that keeps every edge inside -------------
 
 // After convergence: flips with J_mp > 0 (Eq 4.3) whose new diagonal may be outside [emin, emax] are tried
