@@ -2,6 +2,8 @@
 // refused collapses, determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -122,6 +124,54 @@ TEST(Remesher, RegularizeKeepsTheIntervalAndRaisesRegularity) {
   EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
   EXPECT_LE(eval(mesh), before);
 }
+// A converged sphere with one interior edge split at its midpoint: a valence-4 vertex among regular ones.
+TriMesh sphere_with_a_valence_four_vertex() {
+  TriMesh mesh = sphere(3, 2.25);
+  EXPECT_TRUE(remesh(mesh, RemeshSettings{}).converged);
+  const TriMesh::EdgeHandle e(0);
+  const auto h = mesh.halfedge_handle(e, 0);
+  mesh.split(e, 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
+  mesh.garbage_collection();
+  return mesh;
+}
+
+std::size_t low_valence_vertices(const TriMesh& mesh) {
+  std::size_t n = 0;
+  for (auto v : mesh.vertices()) n += mesh.valence(v) <= 4 ? 1 : 0;
+  return n;
+}
+
+TEST(ValenceDefects, AValenceFourVertexIsCollapsedAndEveryEdgeEndsInside) {
+  TriMesh mesh = sphere_with_a_valence_four_vertex();
+  ASSERT_EQ(low_valence_vertices(mesh), 1u);
+  const TriMesh target = mesh;
+  const ProjectionTarget projection_target(target);
+  EXPECT_EQ(remove_valence_defects(mesh, projection_target, 2, 1.2, 1.8), 1u);
+  EXPECT_EQ(low_valence_vertices(mesh), 0u);
+  const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  EXPECT_TRUE(topology(mesh).same_type(topology(target)));
+  EXPECT_EQ(mesh.n_vertices() + 1, target.n_vertices());
+}
+
+TEST(ValenceDefects, ARemovalThatCannotReachTheIntervalIsUndone) {
+  TriMesh mesh = sphere_with_a_valence_four_vertex();
+  const TriMesh before = mesh;
+  const ProjectionTarget projection_target(before);
+  EXPECT_EQ(remove_valence_defects(mesh, projection_target, 2, 10.0, 11.0), 0u);  // no edge can get there
+  ASSERT_EQ(mesh.n_vertices(), before.n_vertices());
+  EXPECT_EQ(mesh.n_faces(), before.n_faces());
+  EXPECT_TRUE(topology(mesh).same_type(topology(before)));
+  // The same vertices (as a set: the restored one has a new handle) with the same valences.
+  auto vertices = [](const TriMesh& m) {
+    std::vector<std::pair<std::array<double, 3>, unsigned>> out;
+    for (auto v : m.vertices()) out.push_back({{m.point(v)[0], m.point(v)[1], m.point(v)[2]}, m.valence(v)});
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_EQ(vertices(mesh), vertices(before));
+}
+
 TEST(Remesher, RefinedSphereWithMeanEdge1Converges) { expect_converges(sphere(4, 1.0)); }
 TEST(Remesher, RefinedTorusWithMeanEdge1Converges) { expect_converges(torus(1.0, 1.0)); }
 

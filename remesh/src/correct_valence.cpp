@@ -129,22 +129,7 @@ std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep) {
 namespace {
 
 // How many E_val-neutral flips may precede the flip that lowers E_val in a chain (regularize).
-constexpr int kChainDepth = 2;
-
-bool inside(double l, double emin, double emax) { return l >= emin && l <= emax; }
-
-// Every edge at `v` inside [emin, emax] and no face at `v` with an angle under kMinAngle.
-bool star_inside(const TriMesh& mesh, TriMesh::VertexHandle v, double emin, double emax) {
-  constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
-  for (auto w : mesh.vv_range(v))
-    if (!inside((mesh.point(v) - mesh.point(w)).norm(), emin, emax)) return false;
-  for (auto f : mesh.vf_range(v)) {
-    Vec3 a, b, c;
-    geometry::face_points(mesh, f, a, b, c);
-    if (geometry::min_angle(a, b, c) < kMinAngle) return false;
-  }
-  return true;
-}
+constexpr int kChainDepth = 3;
 
 // Some vertex of the flip quad is irregular (only then can a flip pair lower E_val).
 bool valence_defect(const FlipQuad& q, const std::vector<int>& valence, const std::vector<int>& ideal) {
@@ -190,7 +175,7 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
       auto all_inside = [&] {
         for (const FlipQuad& q : quads)
           for (auto v : {q.a, q.b, q.c, q.d})
-            if (!star_inside(mesh, v, emin, emax)) return false;
+            if (!geometry::star_inside(mesh, v, emin, emax)) return false;
         return true;
       };
       if (all_inside()) return true;
@@ -205,7 +190,7 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
         }
       }
       bool ok = all_inside();
-      for (const auto& [v, before] : saved) ok = ok && star_inside(mesh, v, emin, emax);
+      for (const auto& [v, before] : saved) ok = ok && geometry::star_inside(mesh, v, emin, emax);
       if (ok) return true;
       for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
       for (std::size_t i = edges.size(); i-- > 0;) {

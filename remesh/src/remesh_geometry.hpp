@@ -89,4 +89,19 @@ struct BorderCurve {
   bool contains(double t) const { return t >= 0.5 * ta && t <= 0.5 * tb; }
 };
 
+// Every edge at `v` inside [emin, emax] and no face at `v` with an angle under 3 degrees.
+inline bool star_inside(const TriMesh& mesh, TriMesh::VertexHandle v, double emin, double emax) {
+  constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
+  for (auto w : mesh.vv_range(v)) {
+    const double l = (mesh.point(v) - mesh.point(w)).norm();
+    if (!(l >= emin && l <= emax)) return false;
+  }
+  for (auto f : mesh.vf_range(v)) {
+    Vec3 a, b, c;
+    face_points(mesh, f, a, b, c);
+    if (min_angle(a, b, c) < kMinAngle) return false;
+  }
+  return true;
+}
+
 }  // namespace carbonmesh::geometry

@@ -184,6 +184,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // Once every edge is inside: valence optimisation that keeps them inside (regularize in correct_valence.cpp),
   // then the surface fit, which keeps them inside too.
   if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
+    spdlog::debug("valence defects: {} removed",
+                  remove_valence_defects(mesh, *projection_target, s.kn, s.emin, s.emax));
     spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
     if (s.fit_surface) {
       const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax);

@@ -140,6 +140,14 @@ class ProjectionTarget {
 void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false);
 void forget_projection(TriMesh& mesh);
 
+// ---- remove_valence_defects.cpp ------------------------------------------------------------------------
+
+// Once every edge is inside: collapses each interior vertex of valence <= 4 (ideal 6) into a neighbour when
+// the kn-star around the kept vertex relaxes (Error_b with the interval hinge, projected onto `target`)
+// with every edge inside [emin, emax]; otherwise the collapse is undone. Returns the vertices removed.
+std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin,
+                                   double emax);
+
 // ---- spatial_order.cpp ----------------------------------------------------------------------------------
 
 // Rebuilds `mesh` with its vertices in Morton order of their positions and its faces by first vertex, so
