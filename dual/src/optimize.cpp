@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <cstdint>
 #include <tuple>
 #include <cmath>
 #include <algorithm>
@@ -11,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "carbonmesh/remesh/morton_order.hpp"
 #include "contact_term.hpp"
 #include "lbfgs.hpp"
 #include "surface_projector.hpp"
@@ -150,43 +150,6 @@ std::vector<double> target_cosines(const Dual& dual, const std::vector<AtomTripl
   return out;
 }
 
-// A spatially coherent atom order: atoms sorted by the Morton (Z-order) code of their starting positions, ties by
-// index. The remesher leaves the atoms (its faces) in no spatial order, so at a million atoms the bond and angle
-// loops miss the cache on nearly every access; in this order the atoms of a bond or an angle mostly lie close
-// together in memory. order[k] is the atom at position k.
-std::vector<int> spatial_order(const std::vector<Vec3>& positions) {
-  const std::size_t n = positions.size();
-  std::vector<int> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<int>(i);
-  if (n == 0) return order;
-  Vec3 lo = positions[0], hi = positions[0];
-  for (const auto& p : positions) lo.minimize(p), hi.maximize(p);
-  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300});
-  auto spread = [](std::uint64_t v) {  // 21 bits -> every third of 63 bits
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-  };
-  std::vector<std::uint64_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t code = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double t = (positions[i][k] - lo[k]) / extent;  // [0, 1]
-      code |= spread(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0)) << k;
-    }
-    key[i] = code;
-  }
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const auto ka = key[static_cast<std::size_t>(a)], kb = key[static_cast<std::size_t>(b)];
-    return ka != kb ? ka < kb : a < b;
-  });
-  return order;
-}
-
 // Area centroid of the surface and the area-weighted RMS distance of its face centroids from it.
 void centre_and_radius(const TriMesh& surface, Vec3& centre, double& radius) {
   double area = 0;
@@ -248,7 +211,7 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   const std::size_t n = positions.size();
   // The minimisation works on the atoms in spatial order: atom order[k] is unknown k (rank[order[k]] = k),
   // bonds sorted by their first atom and angles by their centre atom in that order.
-  const std::vector<int> order = spatial_order(positions);
+  const std::vector<int> order = morton_order(positions);
   std::vector<int> rank(n);
   for (std::size_t k = 0; k < n; ++k) rank[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
   auto ranked = [&](int atom) { return rank[static_cast<std::size_t>(atom)]; };

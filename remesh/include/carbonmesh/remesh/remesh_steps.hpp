@@ -118,7 +118,7 @@ std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, do
 
 // ---- projection.cpp (section 4.5, Algorithm 4) --------------------------------------------------------
 
-// The projection mesh M_p with its spatial index (a CGAL kd-tree over its vertices).
+// The projection mesh M_p with its spatial index (a uniform grid over its vertices, cell_grid.hpp).
 class ProjectionTarget {
  public:
   explicit ProjectionTarget(const TriMesh& target);
