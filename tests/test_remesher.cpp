@@ -154,11 +154,15 @@ TEST(ValenceDefects, AValenceFourVertexIsCollapsedAndEveryEdgeEndsInside) {
   EXPECT_EQ(mesh.n_vertices() + 1, target.n_vertices());
 }
 
-TEST(ValenceDefects, ARemovalThatCannotReachTheIntervalIsUndone) {
+TEST(ValenceDefects, ARemovalThatAddsEdgesOutsideIsUndone) {
   TriMesh mesh = sphere_with_a_valence_four_vertex();
   const TriMesh before = mesh;
-  const ProjectionTarget projection_target(before);
-  EXPECT_EQ(remove_valence_defects(mesh, projection_target, 2, 10.0, 11.0), 0u);  // no edge can get there
+  // A projection target 1.5 times larger: whatever the collapse moves lands far off, every edge there gets
+  // long, so each try adds edges outside and is undone.
+  TriMesh far = mesh;
+  for (auto v : far.vertices()) far.set_point(v, 1.5 * far.point(v));
+  const ProjectionTarget projection_target(far);
+  EXPECT_EQ(remove_valence_defects(mesh, projection_target, 2, 1.2, 1.8), 0u);
   ASSERT_EQ(mesh.n_vertices(), before.n_vertices());
   EXPECT_EQ(mesh.n_faces(), before.n_faces());
   EXPECT_TRUE(topology(mesh).same_type(topology(before)));

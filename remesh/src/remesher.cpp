@@ -181,11 +181,12 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     post_process(mesh, s.kn, s.emin, s.emax);
     result.post_processed = true;
   }
+  // Vertices of valence <= 4 that flips cannot repair are collapsed where that adds no edge outside (also on a
+  // mesh that did not converge: a valence-4 vertex is a 4-ring in the carbon structure).
+  spdlog::debug("valence defects: {} removed", remove_valence_defects(mesh, *projection_target, s.kn, s.emin, s.emax));
   // Once every edge is inside: valence optimisation that keeps them inside (regularize in correct_valence.cpp),
   // then the surface fit, which keeps them inside too.
   if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
-    spdlog::debug("valence defects: {} removed",
-                  remove_valence_defects(mesh, *projection_target, s.kn, s.emin, s.emax));
     spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
     if (s.fit_surface) {
       const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax);

@@ -142,9 +142,10 @@ void forget_projection(TriMesh& mesh);
 
 // ---- remove_valence_defects.cpp ------------------------------------------------------------------------
 
-// Once every edge is inside: collapses each interior vertex of valence <= 4 (ideal 6) into a neighbour when
-// the kn-star around the kept vertex relaxes (Error_b with the interval hinge, projected onto `target`)
-// with every edge inside [emin, emax]; otherwise the collapse is undone. Returns the vertices removed.
+// Collapses each interior vertex of valence <= 4 (ideal 6) into a neighbour when, after the kn-stars of the
+// edges around the kept vertex are relaxed (Error_b with the interval hinge, projected onto `target`), the
+// region has no more edges outside [emin, emax] or faces under 3 degrees than before; otherwise the collapse
+// is undone. With every edge inside before they all stay inside. Returns the vertices removed.
 std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin,
                                    double emax);
 
