@@ -124,6 +124,24 @@ TEST(BuildCommand, BadInputExitsWithTwo) {
   fs::remove_all(dir);
 }
 
+// The built-in sphere is a geodesic sphere: at --atoms 60, 240, 540, 960 the structure is the icosahedral
+// fullerene of exactly that size, 12 pentagons and only hexagons otherwise, the remesher changing nothing.
+TEST(BuildCommand, BuiltInSphereIsTheIcosahedralFullerene) {
+  const fs::path dir = temp_dir("fullerene");
+  for (int atoms : {60, 240, 540, 960}) {
+    const fs::path out = dir / std::to_string(atoms);
+    ASSERT_EQ(run("build -o " + out.string() + " --atoms " + std::to_string(atoms) + " --no-report"), 0);
+    const nlohmann::json s = read_json(out / "summary.json");
+    EXPECT_EQ(s["atoms"].get<int>(), atoms);
+    const auto& rings = s["rings_by_size"];
+    EXPECT_EQ(rings["5"].get<int>(), 12) << atoms;
+    EXPECT_EQ(rings["6"].get<int>(), atoms / 2 - 10) << atoms;
+    EXPECT_EQ(rings.size(), 2u) << atoms;
+    EXPECT_EQ(s["remesh"]["iterations"].get<int>(), 0) << atoms;
+  }
+  fs::remove_all(dir);
+}
+
 // Issue 5: on the built-in sphere every bond after the dual optimisation lies within 1.42 +- 0.05 A, the mean
 // is b (the free surface scale absorbs the difference between the remesher's triangle count and area / 2.62).
 TEST(BuildCommand, SmallFullerenesHaveEveryBondWithinTheWindow) {

@@ -1,6 +1,9 @@
 // Metrics: topology, valence statistics and the Hausdorff distance on meshes with known answers.
 #include <gtest/gtest.h>
 
+#include <utility>
+#include <vector>
+
 #include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
@@ -57,6 +60,42 @@ TEST(Valence, SubdividedIcosphereIsRegularBut12) {
   const ValenceStats v = valence_stats(mesh);
   EXPECT_EQ(v.interior.at(5), 12u);
   EXPECT_EQ(v.interior.at(6), mesh.n_vertices() - 12);
+}
+
+// Geodesic spheres of class I (frequency f: T = f^2) and II (sqrt(3) step: T = 3 f^2): 20 T faces, 10 T + 2
+// vertices, 12 of valence 5 and the rest 6, every vertex on the sphere, edges within a spread of 1.4.
+TEST(GeodesicSphere, HasTwentyTFacesAndTwelveValenceFiveVertices) {
+  for (const auto& [f, sqrt3] : std::vector<std::pair<int, bool>>{{1, false}, {1, true}, {3, true}, {7, false}, {12, true}}) {
+    const TriMesh mesh = make_geodesic_sphere({5.0, f, sqrt3});
+    const std::size_t t = static_cast<std::size_t>(f * f * (sqrt3 ? 3 : 1));
+    EXPECT_EQ(mesh.n_faces(), 20 * t) << f << sqrt3;
+    EXPECT_EQ(mesh.n_vertices(), 10 * t + 2) << f << sqrt3;
+    const Topology topo = topology(mesh);
+    EXPECT_EQ(topo.genus, 0);
+    EXPECT_EQ(topo.boundary_loops, 0u);
+    const ValenceStats v = valence_stats(mesh);
+    EXPECT_EQ(v.interior.at(5), 12u) << f << sqrt3;
+    if (t > 1) {
+      EXPECT_EQ(v.interior.at(6), mesh.n_vertices() - 12) << f << sqrt3;
+    }
+    for (auto vh : mesh.vertices()) EXPECT_NEAR(mesh.point(vh).norm(), 5.0, 1e-9);
+    const EdgeStats e = edge_stats(mesh);
+    EXPECT_LT(e.max / e.min, 1.4) << f << sqrt3;
+  }
+}
+
+TEST(GeodesicSphere, NearestToAFaceCount) {
+  const auto check = [](double faces, int f, bool sqrt3) {
+    const GeodesicSphereShape s = geodesic_sphere_for_faces(faces, 2.0);
+    EXPECT_EQ(s.frequency, f) << faces;
+    EXPECT_EQ(s.sqrt3, sqrt3) << faces;
+    EXPECT_EQ(s.radius, 2.0);
+  };
+  check(60, 1, true);     // C60
+  check(240, 2, true);    // C240
+  check(980, 7, false);   // C980
+  check(1000, 7, false);  // nearest: 980 (C960 is 40 away)
+  check(1, 1, false);     // C20 at least
 }
 
 TEST(EdgeStats, LongAndShortAreStrict) {

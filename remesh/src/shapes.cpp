@@ -176,12 +176,8 @@ double ring_spacing(double radius, std::size_t segments) {
   return 2 * M_PI * radius / static_cast<double>(segments) * std::sqrt(3.0) / 2.0;
 }
 
-}  // namespace
-
-TriMesh make_icosphere(const SphereShape& shape) {
-  require_positive(shape.radius, "sphere radius");
-  if (shape.subdivisions < 0 || shape.subdivisions > 9)
-    throw InputError("shape: sphere subdivisions must be between 0 and 9");
+// The unit icosahedron, faces counter-clockwise seen from outside.
+std::pair<std::vector<Vec3>, std::vector<std::array<int, 3>>> icosahedron() {
   const double g = (1.0 + std::sqrt(5.0)) / 2.0;
   std::vector<Vec3> points = {{-1, g, 0}, {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
                               {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
@@ -190,6 +186,16 @@ TriMesh make_icosphere(const SphereShape& shape) {
                                            {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
                                            {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
   for (auto& p : points) p.normalize();
+  return {points, faces};
+}
+
+}  // namespace
+
+TriMesh make_icosphere(const SphereShape& shape) {
+  require_positive(shape.radius, "sphere radius");
+  if (shape.subdivisions < 0 || shape.subdivisions > 9)
+    throw InputError("shape: sphere subdivisions must be between 0 and 9");
+  auto [points, faces] = icosahedron();
   for (int s = 0; s < shape.subdivisions; ++s) {
     std::map<std::pair<int, int>, int> midpoint;
     auto mid = [&](int a, int b) {
@@ -220,6 +226,105 @@ TriMesh make_icosphere(const SphereShape& shape) {
                   handles[static_cast<std::size_t>(f[2])]);
   mesh.update_normals();
   return mesh;
+}
+
+constexpr int kSpringIterations = 50;
+
+TriMesh make_geodesic_sphere(const GeodesicSphereShape& shape) {
+  require_positive(shape.radius, "sphere radius");
+  if (shape.frequency < 1 || shape.frequency > 1000)
+    throw InputError("shape: geodesic sphere frequency must be between 1 and 1000");
+  const auto [corners, triangles] = icosahedron();
+  const int f = shape.frequency;
+  // Lattice point (i, j) of face (A, B, C) is A + i/f (B - A) + j/f (C - A). Points on an icosahedron edge
+  // are shared by the two faces: keyed by the edge's corners (ascending) and the step from the first.
+  std::vector<Vec3> points(corners.begin(), corners.end());
+  std::map<std::array<int, 3>, int> on_edge;
+  std::vector<std::array<int, 3>> faces;
+  faces.reserve(triangles.size() * static_cast<std::size_t>(f) * static_cast<std::size_t>(f));
+  for (const auto& t : triangles) {
+    const Vec3 &a = corners[static_cast<std::size_t>(t[0])], &b = corners[static_cast<std::size_t>(t[1])],
+               &c = corners[static_cast<std::size_t>(t[2])];
+    std::vector<int> id(static_cast<std::size_t>((f + 1) * (f + 1)), -1);
+    auto at = [&](int i, int j) -> int& { return id[static_cast<std::size_t>(i * (f + 1) + j)]; };
+    for (int i = 0; i <= f; ++i)
+      for (int j = 0; i + j <= f; ++j) {
+        const int k = f - i - j;  // weight of a
+        if (k == f) { at(i, j) = t[0]; continue; }
+        if (i == f) { at(i, j) = t[1]; continue; }
+        if (j == f) { at(i, j) = t[2]; continue; }
+        const Vec3 p = (a * k + b * i + c * j) / f;
+        // On an edge: j == 0 (a-b), i == 0 (a-c), k == 0 (b-c).
+        int u = -1, w = -1, step = 0;
+        if (j == 0) u = t[0], w = t[1], step = i;
+        else if (i == 0) u = t[0], w = t[2], step = j;
+        else if (k == 0) u = t[1], w = t[2], step = j;
+        if (u >= 0) {
+          if (u > w) std::swap(u, w), step = f - step;
+          const auto [it, added] = on_edge.try_emplace({u, w, step}, static_cast<int>(points.size()));
+          if (added) points.push_back(p.normalized());
+          at(i, j) = it->second;
+        } else {
+          at(i, j) = static_cast<int>(points.size());
+          points.push_back(p.normalized());
+        }
+      }
+    for (int i = 0; i < f; ++i)
+      for (int j = 0; i + j < f; ++j) {
+        faces.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+        if (i + j + 2 <= f) faces.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+  }
+  TriMesh mesh;
+  std::vector<VH> handles;
+  handles.reserve(points.size());
+  for (const auto& p : points) handles.push_back(mesh.add_vertex(p * shape.radius));
+  for (const auto& t : faces)
+    mesh.add_face(handles[static_cast<std::size_t>(t[0])], handles[static_cast<std::size_t>(t[1])],
+                  handles[static_cast<std::size_t>(t[2])]);
+  if (shape.sqrt3) {
+    // Kobbelt's sqrt(3) step without smoothing: a vertex at each face centre, then every old edge flipped.
+    std::vector<TriMesh::EdgeHandle> old_edges(mesh.edges().begin(), mesh.edges().end());
+    std::vector<TriMesh::FaceHandle> old_faces(mesh.faces().begin(), mesh.faces().end());
+    for (const auto fh : old_faces) {
+      Vec3 centre(0, 0, 0);
+      for (auto v : mesh.fv_range(fh)) centre += mesh.point(v);
+      mesh.split(fh, centre.normalized() * shape.radius);
+    }
+    for (const auto e : old_edges) mesh.flip(e);
+  }
+  // Central projection shortens the edges near the 12 corners (longest / shortest edge 1.47 at frequency
+  // 122); spring relaxation on the sphere towards the mean edge evens them out (1.34 at frequency 45).
+  double mean = 0;
+  for (auto e : mesh.edges()) mean += mesh.calc_edge_length(e);
+  mean /= static_cast<double>(mesh.n_edges());
+  std::vector<Vec3> next(mesh.n_vertices());
+  for (int it = 0; it < kSpringIterations; ++it) {
+    for (auto v : mesh.vertices()) {
+      Vec3 force(0, 0, 0);
+      for (auto w : mesh.vv_range(v)) {
+        const Vec3 d = mesh.point(w) - mesh.point(v);
+        const double l = d.norm();
+        force += (l - mean) / l * d;
+      }
+      next[static_cast<std::size_t>(v.idx())] = (mesh.point(v) + 0.3 * force).normalized() * shape.radius;
+    }
+    for (auto v : mesh.vertices()) mesh.set_point(v, next[static_cast<std::size_t>(v.idx())]);
+  }
+  mesh.update_normals();
+  return mesh;
+}
+
+GeodesicSphereShape geodesic_sphere_for_faces(double faces, double radius) {
+  GeodesicSphereShape best{radius, 1, false};
+  double best_error = std::abs(20.0 - faces);
+  for (int f = 1; f <= 1000; ++f)
+    for (const bool sqrt3 : {false, true}) {
+      const double count = 20.0 * f * f * (sqrt3 ? 3 : 1);
+      const double error = std::abs(count - faces);
+      if (error < best_error) best = {radius, f, sqrt3}, best_error = error;
+    }
+  return best;
 }
 
 TriMesh make_torus(const TorusShape& shape) {

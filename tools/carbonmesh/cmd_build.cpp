@@ -88,13 +88,24 @@ void check_options(const BuildOptions& o) {
 int run_build(BuildOptions& o) {
   check_options(o);
   StageClock clock;
-  // Load (validated) or the built-in icosphere.
+  ScaleSettings scale;
+  scale.bond = o.bond;
+  if (o.size) scale.mode = ScaleMode::Size, scale.value = *o.size;
+  if (o.scale) scale.mode = ScaleMode::Factor, scale.value = *o.scale;
+  if (o.atoms) scale.mode = ScaleMode::Atoms, scale.value = *o.atoms;
+  // Load (validated) or the built-in sphere: the geodesic sphere whose dual, the icosahedral fullerene C_20T
+  // (12 pentagons, no heptagons), is nearest in size to the structure asked for; with --atoms it is built
+  // at exactly 20 T atoms (C60, C240, C540, C960 at --atoms 60, 240, 540, 960).
   TriMesh mesh;
   std::string source;
   if (o.in.empty()) {
-    mesh = make_icosphere(SphereShape{});
-    source = fmt::format("built-in sphere (icosphere radius {}, {} subdivisions)", SphereShape{}.radius,
-                         SphereShape{}.subdivisions);
+    const double asked = structure_scale(make_geodesic_sphere({10.0, 4, true}), scale).expected_atoms;
+    const GeodesicSphereShape shape = geodesic_sphere_for_faces(asked, 10.0);
+    mesh = make_geodesic_sphere(shape);
+    const long fullerene = static_cast<long>(mesh.n_faces());
+    if (o.atoms) scale.value = static_cast<double>(fullerene);
+    source = fmt::format("built-in sphere (geodesic, frequency {}{}: C{})", shape.frequency,
+                         shape.sqrt3 ? " + sqrt(3)" : "", fullerene);
   } else {
     LoadSettings load;
     load.repair = o.repair;
@@ -105,14 +116,27 @@ int run_build(BuildOptions& o) {
   clock.stop("load");
 
   // Scale.
-  ScaleSettings scale;
-  scale.bond = o.bond;
-  if (o.size) scale.mode = ScaleMode::Size, scale.value = *o.size;
-  if (o.scale) scale.mode = ScaleMode::Factor, scale.value = *o.scale;
-  if (o.atoms) scale.mode = ScaleMode::Atoms, scale.value = *o.atoms;
   StructureScale scaled = structure_scale(mesh, scale);
   if (o.emin) scaled.emin = *o.emin;
   if (o.emax) scaled.emax = *o.emax;
+  if (o.in.empty()) {
+    // The geodesic sphere keeps its 12 pentagons only if the remesher has nothing to change: its edges are
+    // centred in the interval (geometric mean) when their spread fits. The dual optimisation's free scale
+    // then sets the size from the bond length.
+    double shortest = std::numeric_limits<double>::infinity(), longest = 0;
+    for (auto e : mesh.edges()) {
+      const double l = mesh.calc_edge_length(e) * scaled.factor;
+      shortest = std::min(shortest, l), longest = std::max(longest, l);
+    }
+    if (longest / shortest < scaled.emax / scaled.emin) {
+      const double emin = scaled.emin, emax = scaled.emax;
+      ScaleSettings centred = scale;
+      centred.mode = ScaleMode::Factor;
+      centred.value = scaled.factor * std::sqrt(emin * emax / (shortest * longest));
+      scaled = structure_scale(mesh, centred);
+      scaled.emin = emin, scaled.emax = emax;
+    }
+  }
   if (!(scaled.emin > 0) || !(scaled.emin < scaled.emax))
     throw InputError(fmt::format("edge interval [{}, {}] must satisfy 0 < emin < emax", scaled.emin, scaled.emax));
   if (!(scaled.expected_atoms >= 1))

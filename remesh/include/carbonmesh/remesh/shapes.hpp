@@ -16,6 +16,19 @@ struct SphereShape {
 };
 TriMesh make_icosphere(const SphereShape& shape);
 
+// Geodesic sphere: each icosahedron face divided into frequency^2 triangles (T = frequency^2, class I) and,
+// with `sqrt3`, one sqrt(3) subdivision step after (T = 3 frequency^2, class II), projected onto the sphere:
+// 20 T faces, every vertex of valence 6 except the 12 of the icosahedron (valence 5). Its dual is the
+// icosahedral fullerene C_20T (frequency 1 with sqrt3: C60; 2: C240; 3: C540; 4: C960).
+struct GeodesicSphereShape {
+  double radius = 10.0;
+  int frequency = 1;  // 1 to 1000
+  bool sqrt3 = false;
+};
+TriMesh make_geodesic_sphere(const GeodesicSphereShape& shape);
+// The geodesic sphere of `radius` whose face count 20 T is nearest to `faces` (ties to the smaller).
+GeodesicSphereShape geodesic_sphere_for_faces(double faces, double radius);
+
 // A tube of radius `minor_radius` around a circle of radius `major_radius` (genus 1).
 // `edge` is the target edge length (0: chosen so the tube has 24 segments around).
 struct TorusShape {
