@@ -60,6 +60,18 @@ std::vector<std::string> option_blocks(const std::string& help) {
 
 }  // namespace
 
+// `shape geodesic`: frequency 2 with the sqrt(3) step is the triangulation whose dual is C240.
+TEST(CliShape, GeodesicWritesTheDualOfC240) {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("carbonmesh-test-geodesic-" + std::to_string(::getpid()) + ".off");
+  EXPECT_EQ(run_cli("shape geodesic --frequency 2 --sqrt3 -o " + path.string()).exit_code, 0);
+  const RunResult stats = run_cli("stats " + path.string());
+  EXPECT_EQ(stats.exit_code, 0);
+  EXPECT_NE(stats.output.find("V 122  E 360  F 240"), std::string::npos) << stats.output;
+  EXPECT_NE(stats.output.find("valence interior 5:12 6:110"), std::string::npos) << stats.output;
+  std::filesystem::remove(path);
+}
+
 TEST(CliHelp, ListsTheTopicsWithoutOne) {
   const RunResult r = run_cli("help");
   EXPECT_EQ(r.exit_code, 0) << r.output;

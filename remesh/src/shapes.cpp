@@ -379,7 +379,7 @@ TriMesh make_capsule(const CapsuleShape& shape) {
 }
 
 const std::vector<std::string>& shape_names() {
-  static const std::vector<std::string> names = {"sphere", "torus", "helix", "capsule"};
+  static const std::vector<std::string> names = {"sphere", "geodesic", "torus", "helix", "capsule"};
   return names;
 }
 

@@ -1,4 +1,4 @@
-// `carbonmesh shape sphere|torus|helix|capsule [size options] -o OUT`
+// `carbonmesh shape sphere|geodesic|torus|helix|capsule [size options] -o OUT`
 #include <spdlog/spdlog.h>
 
 #include "carbonmesh/remesh/io.hpp"
@@ -11,6 +11,7 @@ void add_shape_command(CLI::App& app, Action& action) {
   struct Options {
     std::string name, output;
     SphereShape sphere;
+    GeodesicSphereShape geodesic;
     TorusShape torus;
     HelixShape helix;
     CapsuleShape capsule;
@@ -18,14 +19,18 @@ void add_shape_command(CLI::App& app, Action& action) {
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("shape", "write a built-in closed shape (sizes in the mesh's units, e.g. A)");
-  cmd->add_option("name", opt->name, "sphere | torus | helix | capsule")
+  cmd->add_option("name", opt->name, "sphere | geodesic | torus | helix | capsule")
       ->required()
       ->check(CLI::IsMember(shape_names()));
   cmd->add_option("-o,--output", opt->output, "output mesh (.off .obj .ply .stl)")->required();
-  cmd->add_option("--radius", opt->sphere.radius, "sphere radius / helix radius / capsule radius (mesh units, e.g. A)")
+  cmd->add_option("--radius", opt->sphere.radius, "sphere and geodesic radius / helix radius / capsule radius (mesh units, e.g. A)")
       ->capture_default_str();
   cmd->add_option("--subdivisions", opt->sphere.subdivisions, "sphere: icosahedron subdivisions (0-9; 20*4^k faces)")
       ->capture_default_str();
+  cmd->add_option("--frequency", opt->geodesic.frequency,
+                  "geodesic: divisions of each icosahedron edge (1-1000; 20 f^2 faces, the dual of C_20f^2)")
+      ->capture_default_str();
+  cmd->add_flag("--sqrt3", opt->geodesic.sqrt3, "geodesic: one sqrt(3) step after (60 f^2 faces: f 1, 2, 3, 4 give the duals of C60, C240, C540, C960)");
   cmd->add_option("--major", opt->torus.major_radius, "torus: radius of the centre circle (mesh units)")->capture_default_str();
   cmd->add_option("--minor", opt->torus.minor_radius, "torus: tube radius (mesh units)")->capture_default_str();
   cmd->add_option("--pitch", opt->helix.pitch, "helix: rise per turn (mesh units)")->capture_default_str();
@@ -40,6 +45,9 @@ void add_shape_command(CLI::App& app, Action& action) {
       const bool radius_given = cmd->count("--radius") > 0;
       if (opt->name == "sphere") {
         mesh = make_icosphere(opt->sphere);
+      } else if (opt->name == "geodesic") {
+        opt->geodesic.radius = opt->sphere.radius;
+        mesh = make_geodesic_sphere(opt->geodesic);
       } else if (opt->name == "torus") {
         opt->torus.edge = opt->edge;
         mesh = make_torus(opt->torus);
