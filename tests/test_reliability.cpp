@@ -121,6 +121,23 @@ TEST(Determinism, RemeshIsByteIdenticalAcrossRunsAndThreadCounts) {
   EXPECT_EQ(outputs[1], outputs[2]) << "two runs with 2 threads";
 }
 
+// The dual optimisation of a structure large enough for its parallel paths (term classes from 20000 atoms,
+// the L-BFGS vector kernels from 60000 coordinates): the same structure.data for 1 and 2 threads.
+TEST(Determinism, LargeBuildIsByteIdenticalAcrossThreadCounts) {
+  const auto dir = fresh_dir("determinism-build");
+  std::string outputs[2];
+  const char* threads[2] = {"1", "2"};
+  for (int run = 0; run < 2; ++run) {
+    const auto out = dir / ("out" + std::to_string(run));
+    const std::string command = std::string("OMP_NUM_THREADS=") + threads[run] + " " + CARBONMESH_CLI +
+                                " -q build -o " + out.string() + " --atoms 20480 --no-report > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    outputs[run] = read_bytes(out / "structure.data");
+    ASSERT_FALSE(outputs[run].empty());
+  }
+  EXPECT_EQ(outputs[0], outputs[1]) << "1 thread vs 2 threads";
+}
+
 TEST(FuzzRegression, DataFileWithAHugeIdIsAnInputError) {
   // Found by fuzz_lammps_data: an atom id of 1e300 was cast to int (undefined behaviour).
   const auto dir = fresh_dir("fuzz-data");
