@@ -90,7 +90,8 @@ class DualEnergy {
     const double s = scale(x);
     const double window = s_.bond_window, window_weight = s_.bond_window_weight;
     // Term classes in parallel only for large structures: on a loaded machine a parallel region per class costs
-    // more than a small loop. A class list that could not be built (more than 64 classes) runs in one pass.
+    // more than a small loop, and one pass in term order keeps the memory order. A class list that could not be
+    // built (more than 64 classes) also runs in one pass.
     const bool parallel = n >= 20000;
     const bool bonds_classed = !bond_classes_.empty() && !bond_classes_[0].empty();
     auto bond_term = [&](std::size_t index, double& ce, double& cg) {
@@ -116,12 +117,12 @@ class DualEnergy {
       gp[0] += k * r0, gp[1] += k * r1, gp[2] += k * r2;
       gq[0] -= k * r0, gq[1] -= k * r1, gq[2] -= k * r2;
     };
-    if (bonds_classed) {
+    if (parallel && bonds_classed) {
       for (const auto& members : bond_classes_)
         chunked_sum(members.size(), parallel, partial_sums_, e, gs,
                     [&](std::size_t m, double& ce, double& cg) { bond_term(members[m], ce, cg); });
-    } else {
-      chunked_sum(bonds_.size(), false, partial_sums_, e, gs, bond_term);
+    } else {  // small structures: one pass in bond order (the memory order of the atoms)
+      for (std::size_t i = 0; i < bonds_.size(); ++i) bond_term(i, e, gs);
     }
     const double wa = s_.angle_weight * b * b;
     if (wa > 0) {
@@ -143,12 +144,12 @@ class DualEnergy {
         Eigen::Map<Eigen::Vector3d>(pg + 3 * t[2]) += dv;
         Eigen::Map<Eigen::Vector3d>(pg + 3 * t[1]) -= du + dv;
       };
-      if (!angle_classes_.empty() && !angle_classes_[0].empty()) {
+      if (parallel && !angle_classes_.empty() && !angle_classes_[0].empty()) {
         for (const auto& members : angle_classes_)
           chunked_sum(members.size(), parallel, partial_sums_, e, gs,
                       [&](std::size_t m, double& ce, double& cg) { angle_term(members[m], ce, cg); });
       } else {
-        chunked_sum(angles_.size(), false, partial_sums_, e, gs, angle_term);
+        for (std::size_t a = 0; a < angles_.size(); ++a) angle_term(a, e, gs);
       }
     }
     if (s_.surface_weight > 0) {
