@@ -9,8 +9,8 @@
 namespace carbonmesh {
 namespace {
 
-constexpr double kMaxNormalTurnCos = 0.3;
-constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
+using geometry::kMaxNormalTurnCos;
+using geometry::kMinAngle;
 
 // Tangential Laplacian over the k-star, weights 1/star (Algorithm 3, else branch).
 Vec3 tangential_laplacian(const TriMesh& mesh, const KStar& star) {

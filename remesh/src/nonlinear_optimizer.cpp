@@ -16,8 +16,8 @@ namespace {
 
 using VH = TriMesh::VertexHandle;
 
-constexpr double kMaxNormalTurnCos = 0.3;
-constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
+using geometry::kMaxNormalTurnCos;
+using geometry::kMinAngle;
 constexpr double kHingeWeight = 1000.0;  // weight of the interval hinge relative to Eq 4.7
 constexpr double kHingeMargin = 0.05;    // the hinge starts this share of the interval width inside it
 

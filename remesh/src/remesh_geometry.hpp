@@ -7,6 +7,10 @@
 
 namespace carbonmesh::geometry {
 
+// Below this smallest angle a triangle counts as degenerate; no step may turn a face by more than ~72 degrees.
+inline constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
+inline constexpr double kMaxNormalTurnCos = 0.3;
+
 inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
   Vec3 n = OpenMesh::cross(b - a, c - a);
   const double l = n.norm();
@@ -91,7 +95,6 @@ struct BorderCurve {
 
 // Every edge at `v` inside [emin, emax] and no face at `v` with an angle under 3 degrees.
 inline bool star_inside(const TriMesh& mesh, TriMesh::VertexHandle v, double emin, double emax) {
-  constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
   for (auto w : mesh.vv_range(v)) {
     const double l = (mesh.point(v) - mesh.point(w)).norm();
     if (!(l >= emin && l <= emax)) return false;

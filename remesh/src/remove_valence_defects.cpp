@@ -51,7 +51,6 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
   // each edge and face once: the removal may not add any (with every edge inside before: keeps them inside).
   std::vector<unsigned> edge_mark, face_mark;
   auto flaws = [&](const std::vector<TriMesh::VertexHandle>& vertices) {
-    constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;
     if (edge_mark.size() < mesh.n_edges()) edge_mark.resize(mesh.n_edges(), 0);
     if (face_mark.size() < mesh.n_faces()) face_mark.resize(mesh.n_faces(), 0);
     ++stamp;
@@ -70,7 +69,7 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
           face_mark[static_cast<std::size_t>(f.idx())] = stamp;
           Vec3 a, b, c;
           geometry::face_points(mesh, f, a, b, c);
-          count += geometry::min_angle(a, b, c) < kMinAngle ? 1 : 0;
+          count += geometry::min_angle(a, b, c) < geometry::kMinAngle ? 1 : 0;
         }
       }
     }

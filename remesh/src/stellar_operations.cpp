@@ -14,8 +14,8 @@ namespace {
 using VH = TriMesh::VertexHandle;
 using HH = TriMesh::HalfedgeHandle;
 
-constexpr double kMaxNormalTurnCos = 0.3;                // a face may not turn more than ~72 degrees
-constexpr double kMinAngle = 3.0 * 3.14159265358979 / 180;  // below this a triangle counts as degenerate
+using geometry::kMaxNormalTurnCos;
+using geometry::kMinAngle;
 
 // Number of border edges of the border loop through the boundary half-edge `h`.
 std::size_t border_loop_length(const TriMesh& mesh, HH h) {
