@@ -1,10 +1,11 @@
-// Removal of interior vertices of valence 4 or less once every edge is inside (not in the dissertation).
+// Removal of interior vertices of valence 4 or less after the remeshing loop (not in the dissertation).
 //
 // A split in the nonlinear phase leaves a valence-4 vertex among regular ones. Flips cannot repair it: a
 // flip moves valence charge in pairs (a 5-7 pair glides, it does not vanish), so without a 7 nearby every
 // flip sequence keeps E_val, and regularize() leaves it. Collapsing the vertex into a neighbour removes its
-// charge (two neighbours drop to valence 5); the region around the kept vertex is then relaxed into the
-// interval as in regularize(), and the collapse is undone by a vertex split when that fails.
+// charge (two neighbours drop to valence 5); the region around the kept vertex is then relaxed as in
+// regularize(), and the collapse is undone by a vertex split when the region ends with more edges outside
+// [emin, emax] (or faces under 3 degrees) than before. On a mesh with every edge inside they all stay inside.
 #include <limits>
 #include <vector>
 
