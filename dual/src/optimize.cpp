@@ -33,7 +33,7 @@ std::vector<std::vector<std::uint32_t>> conflict_free_classes(const std::vector<
     for (int a : terms[t]) taken |= used[static_cast<std::size_t>(a)];
     int c = 0;
     while (c < 64 && (taken >> c & 1u)) ++c;
-    if (c == 64) return {std::vector<std::uint32_t>()};  // (not for a net of degree <= 3) fall back below
+    if (c == 64) return {};  // not for a net of degree <= 3: the caller then sums in one pass
     if (static_cast<std::size_t>(c) >= classes.size()) classes.resize(static_cast<std::size_t>(c) + 1);
     classes[static_cast<std::size_t>(c)].push_back(static_cast<std::uint32_t>(t));
     for (int a : terms[t]) used[static_cast<std::size_t>(a)] |= std::uint64_t{1} << c;
@@ -41,15 +41,14 @@ std::vector<std::vector<std::uint32_t>> conflict_free_classes(const std::vector<
   return classes;
 }
 
-// Sums term(i, e, gs) over i in [0, n), in parallel when asked, with a result that does not depend on the
-// thread count: fixed chunks, their partial sums added in chunk order.
+// Sums term(i, e, gs) over i in [0, n) in parallel with a result that does not depend on the thread count:
+// fixed chunks, their partial sums added in chunk order.
 template <class Term>
-void chunked_sum(std::size_t n, bool parallel, std::vector<std::array<double, 2>>& partial, double& e, double& gs,
-                 Term&& term) {
+void chunked_sum(std::size_t n, std::vector<std::array<double, 2>>& partial, double& e, double& gs, Term&& term) {
   constexpr std::size_t kChunk = 4096;
   const long chunks = static_cast<long>((n + kChunk - 1) / kChunk);
   partial.assign(static_cast<std::size_t>(chunks), {0.0, 0.0});
-#pragma omp parallel for schedule(static) if (parallel)
+#pragma omp parallel for schedule(static)
   for (long c = 0; c < chunks; ++c) {
     double ce = 0, cg = 0;
     const std::size_t end = std::min(n, static_cast<std::size_t>(c + 1) * kChunk);
@@ -72,8 +71,8 @@ class DualEnergy {
       : bonds_(bonds), angles_(angles), target_cosines_(target_cosines), projector_(projector), radius_(radius),
         faces_(std::move(faces)), s_(s),
         contacts_(faces_.size(), bonds, std::numbers::sqrt2 * s.bond, s.contact_weight),
-        bond_classes_(conflict_free_classes(bonds, faces_.size())),
-        angle_classes_(conflict_free_classes(angles, faces_.size())) {}
+        bond_classes_(parallel() ? conflict_free_classes(bonds, faces_.size()) : Classes{}),
+        angle_classes_(parallel() ? conflict_free_classes(angles, faces_.size()) : Classes{}) {}
 
   double scale(const Eigen::VectorXd& x) const {
     return s_.free_scale ? 1.0 + x[x.size() - 1] / radius_ : 1.0;
@@ -89,11 +88,18 @@ class DualEnergy {
     const double b = s_.bond;
     const double s = scale(x);
     const double window = s_.bond_window, window_weight = s_.bond_window_weight;
-    // Term classes in parallel only for large structures: on a loaded machine a parallel region per class costs
-    // more than a small loop, and one pass in term order keeps the memory order. A class list that could not be
-    // built (more than 64 classes) also runs in one pass.
-    const bool parallel = n >= 20000;
-    const bool bonds_classed = !bond_classes_.empty() && !bond_classes_[0].empty();
+    // Large structures sum their bond and angle terms class by class in parallel; small ones (where a parallel
+    // region per class costs more than the loop) and a class list that could not be built go in one pass in
+    // term order, the memory order of the atoms.
+    auto sum_terms = [&](const Classes& classes, std::size_t count, auto&& term) {
+      if (classes.empty()) {
+        for (std::size_t i = 0; i < count; ++i) term(i, e, gs);
+        return;
+      }
+      for (const auto& members : classes)
+        chunked_sum(members.size(), partial_sums_, e, gs,
+                    [&](std::size_t m, double& ce, double& cg) { term(members[m], ce, cg); });
+    };
     auto bond_term = [&](std::size_t index, double& ce, double& cg) {
       const auto& bond = bonds_[index];
       const double* p = px + 3 * bond[0];
@@ -117,13 +123,7 @@ class DualEnergy {
       gp[0] += k * r0, gp[1] += k * r1, gp[2] += k * r2;
       gq[0] -= k * r0, gq[1] -= k * r1, gq[2] -= k * r2;
     };
-    if (parallel && bonds_classed) {
-      for (const auto& members : bond_classes_)
-        chunked_sum(members.size(), parallel, partial_sums_, e, gs,
-                    [&](std::size_t m, double& ce, double& cg) { bond_term(members[m], ce, cg); });
-    } else {  // small structures: one pass in bond order (the memory order of the atoms)
-      for (std::size_t i = 0; i < bonds_.size(); ++i) bond_term(i, e, gs);
-    }
+    sum_terms(bond_classes_, bonds_.size(), bond_term);
     const double wa = s_.angle_weight * b * b;
     if (wa > 0) {
       auto angle_term = [&](std::size_t a, double& ce, double&) {
@@ -144,13 +144,7 @@ class DualEnergy {
         Eigen::Map<Eigen::Vector3d>(pg + 3 * t[2]) += dv;
         Eigen::Map<Eigen::Vector3d>(pg + 3 * t[1]) -= du + dv;
       };
-      if (parallel && !angle_classes_.empty() && !angle_classes_[0].empty()) {
-        for (const auto& members : angle_classes_)
-          chunked_sum(members.size(), parallel, partial_sums_, e, gs,
-                      [&](std::size_t m, double& ce, double& cg) { angle_term(members[m], ce, cg); });
-      } else {
-        for (std::size_t a = 0; a < angles_.size(); ++a) angle_term(a, e, gs);
-      }
+      sum_terms(angle_classes_, angles_.size(), angle_term);
     }
     if (s_.surface_weight > 0) {
       const double w = s_.surface_weight * s * s;
@@ -159,7 +153,7 @@ class DualEnergy {
       // reduced in a fixed order below. Parallel only for large structures: on a loaded machine a parallel
       // region per evaluation costs more than a small loop.
       partial_.resize(n);
-#pragma omp parallel for schedule(static) if (count >= 20000)
+#pragma omp parallel for schedule(static) if (parallel())
       for (long i = 0; i < count; ++i) {
         const std::size_t k = static_cast<std::size_t>(i);
         const Vec3 p(px[3 * i], px[3 * i + 1], px[3 * i + 2]);
@@ -179,6 +173,10 @@ class DualEnergy {
   std::size_t contact_rebuilds() const { return contacts_.rebuilds(); }
 
  private:
+  using Classes = std::vector<std::vector<std::uint32_t>>;  // conflict_free_classes; empty: one pass
+  static constexpr std::size_t kParallelAtoms = 20000;
+  bool parallel() const { return faces_.size() >= kParallelAtoms; }
+
   const std::vector<AtomPair>& bonds_;
   const std::vector<AtomTriple>& angles_;
   const std::vector<double>& target_cosines_;
@@ -188,7 +186,7 @@ class DualEnergy {
   const DualOptimizeSettings& s_;
   std::vector<double> partial_;
   detail::ContactTerm contacts_;
-  std::vector<std::vector<std::uint32_t>> bond_classes_, angle_classes_;  // conflict_free_classes
+  Classes bond_classes_, angle_classes_;
   std::vector<std::array<double, 2>> partial_sums_;
 };
 

@@ -123,11 +123,8 @@ int run_build(BuildOptions& o) {
     // The geodesic sphere keeps its 12 pentagons only if the remesher has nothing to change: its edges are
     // centred in the interval (geometric mean) when their spread fits. The dual optimisation's free scale
     // then sets the size from the bond length.
-    double shortest = std::numeric_limits<double>::infinity(), longest = 0;
-    for (auto e : mesh.edges()) {
-      const double l = mesh.calc_edge_length(e) * scaled.factor;
-      shortest = std::min(shortest, l), longest = std::max(longest, l);
-    }
+    const EdgeStats edges = edge_stats(mesh);
+    const double shortest = edges.min * scaled.factor, longest = edges.max * scaled.factor;
     if (longest / shortest < scaled.emax / scaled.emin) {
       const double emin = scaled.emin, emax = scaled.emax;
       ScaleSettings centred = scale;
