@@ -11,6 +11,7 @@
 
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "local_region.hpp"
 #include "remesh_geometry.hpp"
 
 namespace carbonmesh {
@@ -28,54 +29,8 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
     for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
     mesh.set_point(v, target.project(mesh.point(v), neighbors));
   };
-  // Vertices within `rings` of v (breadth first).
-  std::vector<unsigned> mark(mesh.n_vertices(), 0);
-  unsigned stamp = 0;
+  LocalRegion local(emin, emax);
   std::vector<TriMesh::VertexHandle> region;
-  auto collect_region = [&](TriMesh::VertexHandle v, int rings, std::vector<TriMesh::VertexHandle>& out) {
-    if (mark.size() < mesh.n_vertices()) mark.resize(mesh.n_vertices(), 0);
-    ++stamp;
-    out.assign(1, v);
-    mark[static_cast<std::size_t>(v.idx())] = stamp;
-    for (std::size_t begin = 0, ring = 0; ring < static_cast<std::size_t>(rings); ++ring) {
-      const std::size_t end = out.size();
-      for (std::size_t i = begin; i < end; ++i)
-        for (auto w : mesh.vv_range(out[i]))
-          if (mark[static_cast<std::size_t>(w.idx())] != stamp) {
-            mark[static_cast<std::size_t>(w.idx())] = stamp;
-            out.push_back(w);
-          }
-      begin = end;
-    }
-  };
-  // Edges outside [emin, emax] and faces with an angle under 3 degrees at the (undeleted) region vertices,
-  // each edge and face once: the removal may not add any (with every edge inside before: keeps them inside).
-  std::vector<unsigned> edge_mark, face_mark;
-  auto flaws = [&](const std::vector<TriMesh::VertexHandle>& vertices) {
-    if (edge_mark.size() < mesh.n_edges()) edge_mark.resize(mesh.n_edges(), 0);
-    if (face_mark.size() < mesh.n_faces()) face_mark.resize(mesh.n_faces(), 0);
-    ++stamp;
-    std::size_t count = 0;
-    for (auto v : vertices) {
-      if (mesh.status(v).deleted()) continue;
-      for (auto h : mesh.voh_range(v)) {
-        const auto e = mesh.edge_handle(h);
-        if (edge_mark[static_cast<std::size_t>(e.idx())] != stamp) {
-          edge_mark[static_cast<std::size_t>(e.idx())] = stamp;
-          const double l = mesh.calc_edge_length(e);
-          count += l < emin || l > emax ? 1 : 0;
-        }
-        const auto f = mesh.face_handle(h);
-        if (f.is_valid() && face_mark[static_cast<std::size_t>(f.idx())] != stamp) {
-          face_mark[static_cast<std::size_t>(f.idx())] = stamp;
-          Vec3 a, b, c;
-          geometry::face_points(mesh, f, a, b, c);
-          count += geometry::min_angle(a, b, c) < geometry::kMinAngle ? 1 : 0;
-        }
-      }
-    }
-    return count;
-  };
   for (auto v : defects) {
     if (mesh.status(v).deleted()) continue;
     std::vector<TriMesh::VertexHandle> ring;
@@ -87,8 +42,8 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
       const Vec3 mid = 0.5 * (pv + pu);
       if (!h.is_valid() || !collapse_ok(mesh, h, mid, std::numeric_limits<double>::infinity())) continue;
       // Every vertex the relaxation below can move, with the stars of those: kn + 3 rings around v.
-      collect_region(v, kn + 3, region);
-      const std::size_t flaws_before = flaws(region);
+      local.collect(mesh, v, kn + 3, region);
+      const std::size_t flaws_before = local.flaws(mesh, region);
       const auto vl = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
       const auto vr = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h)));
       mesh.collapse(h);
@@ -105,7 +60,7 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
         saved.insert(saved.end(), moved.begin(), moved.end());
         for (const auto& [w, before] : moved) project(w);
       }
-      if (flaws(region) <= flaws_before) {
+      if (local.flaws(mesh, region) <= flaws_before) {
         ++removed;
         break;
       }

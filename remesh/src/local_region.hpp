@@ -1,0 +1,27 @@
+#pragma once
+// A few rings of vertices around one vertex, and the flaws of that region (edges outside [emin, emax], faces
+// with an angle under 3 degrees): the acceptance test of the local steps that run after convergence
+// (remove_valence_defects, snap_to_features). Internal.
+#include <cstddef>
+#include <vector>
+
+#include "carbonmesh/remesh/mesh.hpp"
+
+namespace carbonmesh {
+
+class LocalRegion {
+ public:
+  LocalRegion(double emin, double emax) : emin_(emin), emax_(emax) {}
+  // The vertices within `rings` of v (breadth first, v first).
+  void collect(const TriMesh& mesh, TriMesh::VertexHandle v, int rings, std::vector<TriMesh::VertexHandle>& out);
+  // Edges outside [emin, emax] and faces with an angle under 3 degrees at the (undeleted) vertices, each edge
+  // and face counted once.
+  std::size_t flaws(const TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& vertices);
+
+ private:
+  double emin_, emax_;
+  std::vector<unsigned> vertex_mark_, edge_mark_, face_mark_;
+  unsigned stamp_ = 0;
+};
+
+}  // namespace carbonmesh
