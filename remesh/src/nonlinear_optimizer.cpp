@@ -7,6 +7,8 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "remesh_geometry.hpp"
@@ -175,40 +177,76 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   Eigen::VectorXd x = Eigen::VectorXd::Zero(dim);
   double current = energy(x);
   double mu = 1e-3;
-  Eigen::MatrixXd jtj(dim, dim);
+  // J^T J is sparse (2x2 blocks of the variables an edge joins): its pattern is built once, each term keeps
+  // pointers to its entries, and each damped system is solved with a sparse LDL^T (analysed once).
+  std::vector<Eigen::Triplet<double>> pattern;
+  for (int i = 0; i < dim; ++i) pattern.emplace_back(i, i, 0.0);
+  auto term_indices = [&](const Term& t, int idx[4]) {
+    int c = 0;
+    idx[c++] = 2 * t.a, idx[c++] = 2 * t.a + 1;
+    if (t.b >= 0) idx[c++] = 2 * t.b, idx[c++] = 2 * t.b + 1;
+    return c;
+  };
+  for (const Term& t : terms) {
+    int idx[4];
+    const int c = term_indices(t, idx);
+    for (int p = 0; p < c; ++p)
+      for (int q = 0; q < c; ++q) pattern.emplace_back(idx[p], idx[q], 0.0);
+  }
+  Eigen::SparseMatrix<double> jtj(dim, dim);
+  jtj.setFromTriplets(pattern.begin(), pattern.end());
+  jtj.makeCompressed();
+  std::vector<double*> entry(16 * terms.size());
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    int idx[4];
+    const int c = term_indices(terms[k], idx);
+    for (int p = 0; p < c; ++p)
+      for (int q = 0; q < c; ++q) entry[16 * k + static_cast<std::size_t>(4 * p + q)] = &jtj.coeffRef(idx[p], idx[q]);
+  }
+  std::vector<double*> diagonal(static_cast<std::size_t>(dim));
+  for (int i = 0; i < dim; ++i) diagonal[static_cast<std::size_t>(i)] = &jtj.coeffRef(i, i);
+  Eigen::SparseMatrix<double> h = jtj;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  ldlt.analyzePattern(h);
   Eigen::VectorXd jtr(dim);
   for (int it = 0; it < 20 && current > 0; ++it) {
-    jtj.setZero();
+    std::fill(jtj.valuePtr(), jtj.valuePtr() + jtj.nonZeros(), 0.0);
     jtr.setZero();
     for (int i = 0; i < nv; ++i)
       if (const int c = curve_of[static_cast<std::size_t>(i)]; c >= 0)
         t1[static_cast<std::size_t>(i)] = curves[static_cast<std::size_t>(c)].derivative(x[2 * i]);
-    for (const Term& t : terms) {
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      const Term& t = terms[k];
       const Vec3 d = point_of(x, t.a, t.va) - point_of(x, t.b, t.vb);
       const double l2 = d.sqrnorm();
       const double r = l2 - m2, hr = hinge(l2);
       const double wj = t.weight + (hr != 0 ? kHingeWeight : 0.0);  // J^T J weight of this edge
       const double wr = t.weight * r + kHingeWeight * hr;           // J^T r weight
       double g[4];
-      int idx[4], c = 0;
+      int idx[4];
+      const int c = term_indices(t, idx);
       const auto sa = static_cast<std::size_t>(t.a);
-      g[c] = 2 * OpenMesh::dot(d, t1[sa]), idx[c++] = 2 * t.a;
-      g[c] = 2 * OpenMesh::dot(d, t2[sa]), idx[c++] = 2 * t.a + 1;
+      g[0] = 2 * OpenMesh::dot(d, t1[sa]);
+      g[1] = 2 * OpenMesh::dot(d, t2[sa]);
       if (t.b >= 0) {
         const auto sb = static_cast<std::size_t>(t.b);
-        g[c] = -2 * OpenMesh::dot(d, t1[sb]), idx[c++] = 2 * t.b;
-        g[c] = -2 * OpenMesh::dot(d, t2[sb]), idx[c++] = 2 * t.b + 1;
+        g[2] = -2 * OpenMesh::dot(d, t1[sb]);
+        g[3] = -2 * OpenMesh::dot(d, t2[sb]);
       }
       for (int p = 0; p < c; ++p) {
         jtr[idx[p]] += wr * g[p];
-        for (int q = 0; q < c; ++q) jtj(idx[p], idx[q]) += wj * g[p] * g[q];
+        for (int q = 0; q < c; ++q) *entry[16 * k + static_cast<std::size_t>(4 * p + q)] += wj * g[p] * g[q];
       }
     }
     bool improved = false;
     for (int tries = 0; tries < 8 && !improved; ++tries) {
-      Eigen::MatrixXd h = jtj;
-      for (int i = 0; i < dim; ++i) h(i, i) += mu * (jtj(i, i) + 1e-12 * (1 + m2));
-      const Eigen::VectorXd step = -h.ldlt().solve(jtr);
+      std::copy(jtj.valuePtr(), jtj.valuePtr() + jtj.nonZeros(), h.valuePtr());
+      for (int i = 0; i < dim; ++i) {
+        const double jj = *diagonal[static_cast<std::size_t>(i)];
+        h.valuePtr()[diagonal[static_cast<std::size_t>(i)] - jtj.valuePtr()] += mu * (jj + 1e-12 * (1 + m2));
+      }
+      ldlt.factorize(h);
+      const Eigen::VectorXd step = -ldlt.solve(jtr);
       if (!step.allFinite()) break;
       const Eigen::VectorXd trial = x + step;
       const double e = admissible(trial) ? energy(trial) : std::numeric_limits<double>::infinity();
