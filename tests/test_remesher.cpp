@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -221,6 +222,69 @@ TEST(SurfaceFit, HalvesTheChordErrorAndKeepsEveryEdgeInside) {
   // move out along their normals on a convex surface (measured 0.84x here, the RMS 0.27x).
   EXPECT_LT(after.max, 0.9 * before.max);
   EXPECT_TRUE(topology(fitted).same_type(topology(input)));
+}
+
+// A cube of side `side` with an n x n grid of squares (two triangles each) on every face: sharp corners and
+// edges, which triangles of the interval cut off unless vertices are put on them.
+TriMesh grid_cube(double side, int n) {
+  TriMesh mesh;
+  std::map<std::array<int, 3>, TriMesh::VertexHandle> index;
+  auto vertex = [&](const std::array<int, 3>& g) -> TriMesh::VertexHandle {
+    if (const auto it = index.find(g); it != index.end()) return it->second;
+    const double h = side / n;
+    const auto v = mesh.add_vertex(Vec3(g[0] * h - side / 2, g[1] * h - side / 2, g[2] * h - side / 2));
+    index.emplace(g, v);
+    return v;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int s : {0, n}) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // u x w points along +axis
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int a, int b) {
+            std::array<int, 3> g{};
+            g[static_cast<std::size_t>(axis)] = s;
+            g[static_cast<std::size_t>(u)] = a;
+            g[static_cast<std::size_t>(w)] = b;
+            return vertex(g);
+          };
+          const auto v00 = at(i, j), v10 = at(i + 1, j), v11 = at(i + 1, j + 1), v01 = at(i, j + 1);
+          if (s == n) {
+            mesh.add_face(v00, v10, v11);
+            mesh.add_face(v00, v11, v01);
+          } else {
+            mesh.add_face(v00, v11, v10);
+            mesh.add_face(v00, v01, v11);
+          }
+        }
+    }
+  return mesh;
+}
+
+// The feature snap on a cube: vertices are put on corner and edge points that the remeshed triangles cut off.
+// The RMS distance to the input falls clearly (measured 0.1615 -> 0.1234), the farthest input vertex does not
+// get farther, and every edge stays inside. The largest sampled distance does not fall (0.964 -> 1.017): the
+// cube's straight ridges would need chains of vertices joined by edges along them, which one vertex moved at a
+// time does not make (docs/algorithm.md).
+TEST(SnapToFeatures, BringsACubeCloserAndKeepsEveryEdgeInside) {
+  const TriMesh input = grid_cube(10.0, 5);
+  TriMesh plain = input, snapped = input;
+  RemeshSettings settings;
+  settings.snap_features = false;
+  ASSERT_TRUE(remesh(plain, settings).converged);
+  settings.snap_features = true;
+  const RemeshResult result = remesh(snapped, settings);
+  ASSERT_TRUE(result.converged);
+  EXPECT_TRUE(result.snapped);
+  EXPECT_GT(result.snapped_vertices, 8u);
+  EXPECT_LE(result.snap_max_after, result.snap_max_before);
+  const EdgeStats edges = edge_stats(snapped, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  EXPECT_TRUE(topology(snapped).same_type(topology(input)));
+  HausdorffSettings hs;
+  hs.samples = 50000;
+  const HausdorffResult before = hausdorff_distance(plain, input, hs), after = hausdorff_distance(snapped, input, hs);
+  EXPECT_LT(after.rms, 0.85 * before.rms);
 }
 
 TEST(Remesher, IsDeterministic) {

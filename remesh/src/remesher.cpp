@@ -82,8 +82,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
 
   spatial_order(mesh);  // the input's order may be arbitrary (see the loop)
   auto target = std::make_unique<TriMesh>(mesh);  // M: the projection mesh
-  // The input for the final surface fit (the projection mesh is the input too unless p replaces it).
-  std::unique_ptr<TriMesh> input = s.fit_surface && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
+  // The input for the final feature snap and surface fit (the projection mesh is the input too unless p replaces it).
+  std::unique_ptr<TriMesh> input = (s.fit_surface || s.snap_features) && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
   auto projection_target = std::make_unique<ProjectionTarget>(*target);
   EdgeStats edges = edge_stats(mesh, interval);
   // An input much coarser than the interval (a small model scaled up for a large structure): the first
@@ -185,11 +185,27 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // mesh that did not converge: a valence-4 vertex is a 4-ring in the carbon structure).
   spdlog::debug("valence defects: {} removed", remove_valence_defects(mesh, *projection_target, s.kn, s.emin, s.emax));
   // Once every edge is inside: valence optimisation that keeps them inside (regularize in correct_valence.cpp),
-  // then the surface fit, which keeps them inside too.
+  // then the feature snap and the surface fit, which keep them inside too.
   if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
     spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
+    // Vertices onto the input points the surface cuts off, before the fit, which then keeps them there.
+    SnapResult snap;
+    if (s.snap_features) {
+      const double t0 = seconds();
+      const TriMesh& surface = input ? *input : *target;
+      snap = snap_to_features(mesh, surface, *projection_target, s.kn, s.emin, s.emax, s.snap_tolerance * s.emin);
+      result.snapped = true;
+      result.snapped_vertices = snap.snapped;
+      result.snap_max_before = snap.max_before;
+      result.snap_max_after = snap.max_after;
+      spdlog::debug("snap to features: {} of {} input vertices farther than {:.4f} snapped in {} rounds, farthest "
+                    "{:.4f} -> {:.4f}, {:.3f}s",
+                    snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.max_before,
+                    snap.max_after, seconds() - t0);
+    }
     if (s.fit_surface) {
-      const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax);
+      const SurfaceFitResult fit =
+          fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax, {}, snap.fixed.empty() ? nullptr : &snap.fixed);
       result.fitted = true;
       result.fit_rms_before = fit.rms_before;
       result.fit_rms_after = fit.rms_after;
@@ -249,6 +265,10 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"fitted", r.fitted},
           {"fit_rms_before", r.fit_rms_before},
           {"fit_rms_after", r.fit_rms_after},
+          {"snapped", r.snapped},
+          {"snapped_vertices", r.snapped_vertices},
+          {"snap_max_before", r.snap_max_before},
+          {"snap_max_after", r.snap_max_after},
           {"log", log}};
   if (r.topology_violation) j["topology_changed"] = to_json(r.changed);
   return j;

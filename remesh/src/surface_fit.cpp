@@ -110,7 +110,7 @@ std::vector<Vec3> unit_vertex_normals(const TriMesh& mesh) {
 }  // namespace
 
 SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
-                                const SurfaceFitSettings& settings) {
+                                const SurfaceFitSettings& settings, const std::vector<char>* fixed) {
   SurfaceFitResult result;
   const Triangles triangles = triangles_of(surface);
   if (triangles.empty() || mesh.n_faces() == 0) return result;
@@ -121,6 +121,7 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
   std::vector<Vec3> start(n);
   for (auto v : mesh.vertices()) start[static_cast<std::size_t>(v.idx())] = mesh.point(v);
   const double max_offset = settings.max_offset * emin;
+  auto is_fixed = [&](int i) { return fixed != nullptr && (*fixed)[static_cast<std::size_t>(i)] != 0; };
 
   Hints hints;
   std::vector<Vec3> normals = unit_vertex_normals(mesh);
@@ -150,7 +151,8 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
       }
       const auto& v = samples[f].vertex;
       for (std::size_t a = 0; a < 3; ++a)
-        for (std::size_t b = 0; b < 3; ++b) triplets.emplace_back(v[a], v[b], block[a][b]);
+        for (std::size_t b = 0; b < 3; ++b)
+          if (!is_fixed(v[a]) && !is_fixed(v[b])) triplets.emplace_back(v[a], v[b], block[a][b]);
     }
     for (std::size_t i = 0; i < n; ++i)  // Tikhonov term: isolated or unconstrained vertices stay put
       triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 1e-3 * mean_weight);
@@ -160,6 +162,8 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
     solver.setTolerance(1e-8);
     solver.setMaxIterations(500);
     solver.compute(a);
+    for (std::size_t i = 0; i < n; ++i)
+      if (is_fixed(static_cast<int>(i))) rhs[static_cast<Eigen::Index>(i)] = 0;  // delta_i = 0
     const Eigen::VectorXd delta = solver.solve(rhs);
     if (!delta.allFinite()) break;
     for (auto v : mesh.vertices()) {

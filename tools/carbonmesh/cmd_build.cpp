@@ -158,6 +158,7 @@ int run_build(BuildOptions& o) {
   // The dual optimisation puts the atoms on the input surface itself: the remesh's surface fit would only
   // move the starting points, at the cost of closest-point queries on every face.
   o.remesh.fit_surface = false;
+  o.remesh.snap_features = false;  // likewise, and its distance trees over the whole mesh cost most at 1M atoms
   o.remesh.emax = scaled.emax;
   o.remesh.on_iteration = [](const IterationLog& l) {
     spdlog::info("remesh iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  {:.2f}s{}",

@@ -1,5 +1,5 @@
 // `carbonmesh remesh IN OUT --emin A --emax B [--iterations 150] [--kl 2] [--kn 2] [--p 0] [--l 0.5]
-//  [--weights mean-value|shape-preserving] [--no-fit] [--log convergence.csv] [--json] [--repair]`
+//  [--weights mean-value|shape-preserving] [--no-fit] [--no-snap] [--log convergence.csv] [--json] [--repair]`
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -32,7 +32,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
     int iterations = 150, kl = 2, kn = 2, p = 0;
     double l = 0.5;
     ParametrizationWeights weights = ParametrizationWeights::MeanValue;
-    bool json = false, repair = false, no_fit = false;
+    bool json = false, repair = false, no_fit = false, no_snap = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("remesh", "remesh so that every edge length lies in [emin, emax] (Algorithm 1)");
@@ -51,6 +51,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--weights", opt->weights, "parametrization weights: mean-value or shape-preserving")
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
   cmd->add_flag("--no-fit", opt->no_fit, "skip the final least-squares fit to the input (every vertex stays on the input, as in the dissertation; default: fit)");
+  cmd->add_flag("--no-snap", opt->no_snap, "skip moving vertices onto input points the remeshed surface cuts off (ear rims, tips, grooves; default: snap)");
   cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
   cmd->add_flag("--json", opt->json, "final summary as one JSON object instead of text");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
@@ -78,6 +79,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
       settings.l = opt->l;
       settings.weights = opt->weights;
       settings.fit_surface = !opt->no_fit;
+      settings.snap_features = !opt->no_snap;
       std::ostringstream csv;
       csv << "iteration,long,short,percent_regular,mean,std,seconds,nonlinear\n";
       settings.on_iteration = [&csv](const IterationLog& l) {
@@ -115,6 +117,10 @@ void add_remesh_command(CLI::App& app, Action& action) {
             result.percent_eval_gt1, result.iterations, result.post_processed ? " (post-processed)" : "",
             result.seconds, topology_text(result.before), topology_text(result.after),
             result.before.same_type(result.after) ? "" : "  (SURFACE TYPE CHANGED)");
+        if (result.snapped)
+          std::cout << fmt::format("feature snap: {} vertices moved onto the input, farthest input vertex {:.4f} -> "
+                                   "{:.4f}\n",
+                                   result.snapped_vertices, result.snap_max_before, result.snap_max_after);
         if (result.fitted)
           std::cout << fmt::format("surface fit: RMS distance to the input {:.4f} -> {:.4f}\n", result.fit_rms_before,
                                    result.fit_rms_after);

@@ -116,6 +116,12 @@ NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double e
 std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, double emin, double emax,
                                  std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved);
 
+// The same over the interior vertices within `k` rings of `v`, v itself and vertices with fixed[index] != 0
+// excepted (they stay where they are).
+std::size_t optimize_vertex_region(TriMesh& mesh, TriMesh::VertexHandle v, int k, double emin, double emax,
+                                   const std::vector<char>& fixed,
+                                   std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved);
+
 // ---- projection.cpp (section 4.5, Algorithm 4) --------------------------------------------------------
 
 // The projection mesh M_p with its spatial index (a uniform grid over its vertices, cell_grid.hpp).
@@ -148,6 +154,23 @@ void forget_projection(TriMesh& mesh);
 // is undone. With every edge inside before they all stay inside. Returns the vertices removed.
 std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin,
                                    double emax);
+
+// ---- snap_to_features.cpp ----------------------------------------------------------------------------------
+
+struct SnapResult {
+  std::size_t candidates = 0;  // input vertices farther than the tolerance from the remeshed surface at the start
+  std::size_t snapped = 0;     // remeshed vertices moved onto one of them and kept there
+  int rounds = 0;
+  double max_before = 0, max_after = 0;  // largest distance of an interior input vertex to the remeshed surface,
+                                         // before and after this step
+  std::vector<char> fixed;               // per vertex of the mesh: 1 where it was snapped onto the input
+};
+// Each interior input vertex farther than `tolerance` from `mesh` (farthest first) pulls the nearest free
+// interior vertex of `mesh` onto itself; the interior vertices of its kn+1 rings are relaxed (Error_b with
+// the interval hinge) and projected onto `target`. Kept only if that adds no edge outside [emin, emax], no
+// face under 3 degrees and no folded face; with every edge inside before they all stay inside.
+SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
+                            double emax, double tolerance);
 
 // ---- spatial_order.cpp ----------------------------------------------------------------------------------
 
@@ -186,7 +209,8 @@ struct SurfaceFitResult {
 
 // Moves every vertex along its normal so that the squared distance between the triangles and `surface` is
 // least (sparse normal equations, conjugate gradients); edges inside [emin, emax] before stay inside.
+// Vertices with (*fixed)[index] != 0 stay where they are.
 SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
-                                const SurfaceFitSettings& settings = {});
+                                const SurfaceFitSettings& settings = {}, const std::vector<char>* fixed = nullptr);
 
 }  // namespace carbonmesh

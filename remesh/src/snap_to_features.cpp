@@ -1,0 +1,184 @@
+// Vertices moved onto the input points that the remeshed surface cuts off (not in the dissertation).
+//
+// With every vertex on the input and every edge in [emin, emax], a feature of the input narrower than an edge
+// (an ear's rim, a cone tip, a groove) is bridged by triangles whose vertices happen to lie beside it: the
+// Hausdorff distance is set there, up to most of an edge, and offsets along the normals (fit_to_surface)
+// cannot reach it. Here each input vertex farther from the remeshed surface than `tolerance` pulls one of the
+// nearest free remeshed vertices onto itself; that vertex is then held fixed while the interior vertices of
+// its kn+1 rings are relaxed (Error_b with the interval hinge, Eq 4.7) and projected back onto the input. The
+// move is kept only if the region gains no edge outside [emin, emax], no face under 3 degrees and no folded
+// face; otherwise every position is restored. Farthest input vertices first, in rounds: the distances of the
+// input vertices next to a kept move are measured again (locally) before the next round, so a ridge is
+// captured vertex by vertex.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "carbonmesh/remesh/remesh_steps.hpp"
+#include "carbonmesh/remesh/triangle_tree.hpp"
+#include "local_region.hpp"
+#include "remesh_geometry.hpp"
+
+namespace carbonmesh {
+namespace {
+
+using namespace triangle_tree;
+
+constexpr int kRounds = 6;             // a round that keeps no move ends the step
+constexpr std::size_t kChoices = 2;  // remeshed vertices tried per input vertex, nearest first (a third: 5% kept)
+constexpr int kPasses = 3;  // relax-and-project passes before a move is given up (kept at the first clean one)
+
+struct Distance {
+  double d = 0;
+  int face = -1;  // the remeshed face nearest the input vertex (-1: not measured, a border or isolated vertex)
+};
+
+bool measured(const TriMesh& input, TriMesh::VertexHandle v) {
+  return !input.status(v).deleted() && !input.is_boundary(v) && !input.is_isolated(v);
+}
+
+// Distances of the input's interior vertices to the remeshed surface (one AABB tree; parallel, one slot per
+// vertex).
+std::vector<Distance> input_distances(const TriMesh& mesh, const TriMesh& input) {
+  const Triangles triangles = triangles_of(mesh);
+  std::vector<Distance> out(input.n_vertices());
+  if (triangles.empty()) return out;
+  Tree tree(triangles.begin(), triangles.end());
+  tree.build();
+  tree.accelerate_distance_queries();
+  const int n = static_cast<int>(input.n_vertices());
+#pragma omp parallel for schedule(dynamic, 512)
+  for (int i = 0; i < n; ++i) {
+    if (!measured(input, TriMesh::VertexHandle(i))) continue;
+    const Point q = to_point(input.point(TriMesh::VertexHandle(i)));
+    const auto [closest, primitive] = tree.closest_point_and_primitive(q);
+    Distance& d = out[static_cast<std::size_t>(i)];
+    d.d = std::sqrt(CGAL::squared_distance(q, closest));
+    d.face = static_cast<int>(primitive - triangles.begin());  // triangles_of lists the faces in order
+  }
+  return out;
+}
+
+// The distance of q to the faces around `face` (corners within `rings` of its first corner), after a local
+// change near it.
+Distance local_distance(const TriMesh& mesh, const Vec3& q, TriMesh::FaceHandle face, int rings, LocalRegion& local,
+                        std::vector<TriMesh::VertexHandle>& around) {
+  Distance best{std::numeric_limits<double>::infinity(), -1};
+  local.collect(mesh, mesh.to_vertex_handle(mesh.halfedge_handle(face)), rings, around);
+  const Point p = to_point(q);
+  for (auto v : around)
+    for (auto f : mesh.vf_range(v)) {
+      Vec3 a, b, c;
+      geometry::face_points(mesh, f, a, b, c);
+      const double d = std::sqrt(CGAL::squared_distance(p, Triangle(to_point(a), to_point(b), to_point(c))));
+      if (d < best.d || (d == best.d && f.idx() < best.face)) best = {d, f.idx()};
+    }
+  return best;
+}
+
+}  // namespace
+
+SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
+                            double emax, double tolerance) {
+  SnapResult result;
+  mesh.garbage_collection();  // face indices = positions in triangles_of
+  std::vector<char> fixed(mesh.n_vertices(), 0), tried(input.n_vertices(), 0), touched(mesh.n_vertices(), 0);
+  LocalRegion local(emin, emax), search(emin, emax);
+  std::vector<TriMesh::VertexHandle> region, around;
+  std::vector<std::pair<TriMesh::VertexHandle, Vec3>> moved, saved;
+  std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
+  std::vector<Vec3> neighbors;
+  auto project = [&](TriMesh::VertexHandle v) {
+    neighbors.clear();
+    for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
+    mesh.set_point(v, target.project(mesh.point(v), neighbors));
+  };
+  // Moves v onto q, relaxes and projects its neighbourhood; keeps the result if the region has no new flaw.
+  auto try_snap = [&](TriMesh::VertexHandle v, const Vec3& q) {
+    local.collect(mesh, v, kn + 3, region);  // every vertex the relaxation moves, with their stars
+    const std::size_t flaws_before = local.flaws(mesh, region);
+    normals.clear();
+    for (auto w : region)
+      for (auto f : mesh.vf_range(w)) normals.emplace_back(f, geometry::face_normal(mesh, f));
+    saved.assign(1, {v, mesh.point(v)});
+    mesh.set_point(v, q);
+    fixed[static_cast<std::size_t>(v.idx())] = 1;
+    for (int pass = 0; pass < kPasses; ++pass) {
+      optimize_vertex_region(mesh, v, kn + 1, emin, emax, fixed, moved);
+      saved.insert(saved.end(), moved.begin(), moved.end());
+      for (const auto& [w, before] : moved) project(w);
+      bool folded = false;
+      for (const auto& [f, before] : normals)
+        folded = folded || OpenMesh::dot(before, geometry::face_normal(mesh, f)) < geometry::kMaxNormalTurnCos;
+      if (!folded && local.flaws(mesh, region) <= flaws_before) {
+        for (auto w : region) touched[static_cast<std::size_t>(w.idx())] = 1;
+        return true;
+      }
+    }
+    for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
+    fixed[static_cast<std::size_t>(v.idx())] = 0;
+    return false;
+  };
+
+  std::vector<Distance> distances = input_distances(mesh, input);
+  std::vector<int> candidates;
+  std::vector<std::pair<double, int>> choices;
+  for (const auto& d : distances) result.max_before = std::max(result.max_before, d.d);
+  for (int round = 0; round < kRounds; ++round) {
+    candidates.clear();
+    for (std::size_t i = 0; i < distances.size(); ++i)
+      if (distances[i].d > tolerance && distances[i].face >= 0 && !tried[i]) candidates.push_back(static_cast<int>(i));
+    if (round == 0) result.candidates = candidates.size();
+    std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
+      const double da = distances[static_cast<std::size_t>(a)].d, db = distances[static_cast<std::size_t>(b)].d;
+      return da != db ? da > db : a < b;
+    });
+    std::fill(touched.begin(), touched.end(), 0);
+    std::size_t snapped = 0;
+    for (const int c : candidates) {
+      const Vec3 q = input.point(TriMesh::VertexHandle(c));
+      const auto face = TriMesh::FaceHandle(distances[static_cast<std::size_t>(c)].face);
+      // The remeshed surface near this point changed in this round: its distance is measured again first.
+      bool stale = false;
+      for (auto w : mesh.fv_range(face)) stale = stale || touched[static_cast<std::size_t>(w.idx())];
+      if (stale) continue;
+      tried[static_cast<std::size_t>(c)] = 1;
+      // The free vertices nearest the point among the nearest face's corners and their neighbours; the second
+      // only if it is within emin (on armadillo 0 of 13 second choices farther away were kept).
+      choices.clear();
+      for (auto corner : mesh.fv_range(face))
+        for (auto w : mesh.vv_range(corner))
+          for (auto u : {corner, w}) {
+            const double d = (mesh.point(u) - q).norm();
+            if (!mesh.is_boundary(u) && !fixed[static_cast<std::size_t>(u.idx())] && d <= emax)
+              choices.emplace_back(d, u.idx());
+          }
+      std::sort(choices.begin(), choices.end());
+      choices.erase(std::unique(choices.begin(), choices.end()), choices.end());
+      if (choices.size() > kChoices) choices.resize(kChoices);
+      if (choices.size() > 1 && choices[1].first > emin) choices.resize(1);
+      for (const auto& choice : choices)
+        if (try_snap(TriMesh::VertexHandle(choice.second), q)) {
+          ++snapped;
+          break;
+        }
+    }
+    // Input vertices whose nearest face moved: measured again among the faces around it.
+    for (std::size_t i = 0; i < distances.size(); ++i) {
+      Distance& d = distances[i];
+      if (d.face < 0) continue;
+      bool stale = false;
+      for (auto w : mesh.fv_range(TriMesh::FaceHandle(d.face))) stale = stale || touched[static_cast<std::size_t>(w.idx())];
+      if (stale) d = local_distance(mesh, input.point(TriMesh::VertexHandle(static_cast<int>(i))), TriMesh::FaceHandle(d.face), 3, search, around);
+    }
+    result.snapped += snapped;
+    result.rounds = round + 1;
+    if (snapped == 0) break;
+  }
+  for (const auto& d : distances) result.max_after = std::max(result.max_after, d.d);
+  result.fixed = std::move(fixed);
+  return result;
+}
+
+}  // namespace carbonmesh
