@@ -82,8 +82,10 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
 
   spatial_order(mesh);  // the input's order may be arbitrary (see the loop)
   auto target = std::make_unique<TriMesh>(mesh);  // M: the projection mesh
-  // The input for the final feature snap and surface fit (the projection mesh is the input too unless p replaces it).
-  std::unique_ptr<TriMesh> input = (s.fit_surface || s.snap_features) && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
+  // The input for the final feature snap and surface fit (the projection mesh is the input too unless p
+  // replaces it).
+  std::unique_ptr<TriMesh> input =
+      (s.fit_surface || s.snap_features) && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
   auto projection_target = std::make_unique<ProjectionTarget>(*target);
   EdgeStats edges = edge_stats(mesh, interval);
   // An input much coarser than the interval (a small model scaled up for a large structure): the first
@@ -204,8 +206,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                     snap.max_after, seconds() - t0);
     }
     if (s.fit_surface) {
-      const SurfaceFitResult fit =
-          fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax, {}, snap.fixed.empty() ? nullptr : &snap.fixed);
+      const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
+      const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax, {}, snapped);
       result.fitted = true;
       result.fit_rms_before = fit.rms_before;
       result.fit_rms_after = fit.rms_after;

@@ -45,7 +45,7 @@ struct RemeshSettings {
   // After convergence, move vertices onto input points farther than snap_tolerance * emin from the remeshed
   // surface (snap_to_features in remesh_steps.hpp: ear rims, cone tips, grooves), every edge kept inside.
   bool snap_features = true;
-  double snap_tolerance = 0.25;
+  double snap_tolerance = 0.25;  // as a fraction of emin
   // Called after every iteration (progress lines, CSV logs). May be empty.
   std::function<void(const IterationLog&)> on_iteration;
 };
@@ -67,9 +67,10 @@ struct RemeshResult {
   std::size_t rejected_best = 0;  // iterations whose better mesh was refused as best for a changed surface type
   bool fitted = false;            // fit_to_surface ran (settings.fit_surface)
   double fit_rms_before = 0, fit_rms_after = 0;  // its area-weighted RMS distance to the input, before and after
-  bool snapped = false;                     // snap_to_features ran (settings.snap_features)
-  std::size_t snapped_vertices = 0;         // vertices it moved onto the input's features
-  double snap_max_before = 0, snap_max_after = 0;  // farthest input vertex from the remeshed surface, before and after
+  bool snapped = false;              // snap_to_features ran (settings.snap_features)
+  std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
+  // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit).
+  double snap_max_before = 0, snap_max_after = 0;
   std::vector<IterationLog> log;
 };
 
