@@ -312,6 +312,9 @@ TEST(Remesher, RejectsAnInvalidInterval) {
   settings.emin = 1.8;
   settings.emax = 1.2;
   EXPECT_THROW(remesh(mesh, settings), InputError);
+  settings = RemeshSettings{};
+  settings.snap_tolerance = -0.1;
+  EXPECT_THROW(remesh(mesh, settings), InputError);
 }
 
 // A tetrahedron whose face (0, 2, 1) is split by vertex 4: vertices 0 and 1 share the neighbours 2, 3 and 4,

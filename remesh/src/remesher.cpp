@@ -25,6 +25,8 @@ void validate(const RemeshSettings& s) {
   if (s.p < 0) throw InputError(fmt::format("p {} must not be negative", s.p));
   if (!(s.l >= 0)) throw InputError(fmt::format("l {} must not be negative", s.l));
   if (!std::isfinite(s.emax)) throw InputError(fmt::format("emax {} must be finite", s.emax));
+  if (!(s.snap_tolerance >= 0 && std::isfinite(s.snap_tolerance)))
+    throw InputError(fmt::format("snap tolerance {} must be finite and not negative", s.snap_tolerance));
 }
 
 // About how many triangles the remeshed surface has: the area over an equilateral triangle of the mid edge.
