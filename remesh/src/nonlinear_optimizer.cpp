@@ -306,37 +306,11 @@ std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, do
   return variables.size();
 }
 
-std::size_t optimize_vertex_region(TriMesh& mesh, TriMesh::VertexHandle v, int k, double emin, double emax,
-                                   const std::vector<char>& fixed,
-                                   std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved) {
+void optimize_vertices(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& variables, double emin, double emax) {
   thread_local std::unique_ptr<Marks> marks;
   if (!marks || marks->vertex.size() != mesh.n_vertices() || marks->edge.size() != mesh.n_edges())
     marks = std::make_unique<Marks>(mesh);
-  thread_local std::vector<VH> ring, variables;
-  // Rings 1..k of v, breadth first.
-  ++marks->stamp;
-  ring.assign(1, v);
-  marks->vertex[static_cast<std::size_t>(v.idx())] = marks->stamp;
-  for (std::size_t begin = 0, r = 0; r < static_cast<std::size_t>(k); ++r) {
-    const std::size_t end = ring.size();
-    for (std::size_t i = begin; i < end; ++i)
-      for (auto w : mesh.vv_range(ring[i]))
-        if (marks->vertex[static_cast<std::size_t>(w.idx())] != marks->stamp) {
-          marks->vertex[static_cast<std::size_t>(w.idx())] = marks->stamp;
-          ring.push_back(w);
-        }
-    begin = end;
-  }
-  variables.clear();
-  moved.clear();
-  for (std::size_t i = 1; i < ring.size(); ++i) {
-    const VH w = ring[i];
-    if (mesh.is_boundary(w) || fixed[static_cast<std::size_t>(w.idx())]) continue;
-    variables.push_back(w);
-    moved.emplace_back(w, mesh.point(w));
-  }
   if (!variables.empty()) optimize_region(mesh, variables, emin, emax, 1.0, *marks);
-  return variables.size();
 }
 
 NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double emax) {

@@ -87,8 +87,8 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   mesh.garbage_collection();  // face indices = positions in triangles_of
   std::vector<char> fixed(mesh.n_vertices(), 0), tried(input.n_vertices(), 0), touched(mesh.n_vertices(), 0);
   LocalRegion local(emin, emax), search(emin, emax);
-  std::vector<TriMesh::VertexHandle> region, around;
-  std::vector<std::pair<TriMesh::VertexHandle, Vec3>> moved, saved;
+  std::vector<TriMesh::VertexHandle> region, inner, variables, around;
+  std::vector<std::pair<TriMesh::VertexHandle, Vec3>> saved;
   std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
   std::vector<Vec3> neighbors;
   auto project = [&](TriMesh::VertexHandle v) {
@@ -106,10 +106,15 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     saved.assign(1, {v, mesh.point(v)});
     mesh.set_point(v, q);
     fixed[static_cast<std::size_t>(v.idx())] = 1;
+    // The free interior vertices within kn + 1 rings of v (breadth first) are relaxed around it.
+    local.collect(mesh, v, kn + 1, inner);
+    variables.clear();
+    for (auto w : inner)
+      if (w != v && !mesh.is_boundary(w) && !fixed[static_cast<std::size_t>(w.idx())]) variables.push_back(w);
     for (int pass = 0; pass < kPasses; ++pass) {
-      optimize_vertex_region(mesh, v, kn + 1, emin, emax, fixed, moved);
-      saved.insert(saved.end(), moved.begin(), moved.end());
-      for (const auto& [w, before] : moved) project(w);
+      for (auto w : variables) saved.emplace_back(w, mesh.point(w));
+      optimize_vertices(mesh, variables, emin, emax);
+      for (auto w : variables) project(w);
       bool folded = false;
       for (const auto& [f, before] : normals)
         folded = folded || OpenMesh::dot(before, geometry::face_normal(mesh, f)) < geometry::kMaxNormalTurnCos;

@@ -116,11 +116,8 @@ NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double e
 std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, double emin, double emax,
                                  std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved);
 
-// The same over the interior vertices within `k` rings of `v`, v itself and vertices with fixed[index] != 0
-// excepted (they stay where they are).
-std::size_t optimize_vertex_region(TriMesh& mesh, TriMesh::VertexHandle v, int k, double emin, double emax,
-                                   const std::vector<char>& fixed,
-                                   std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved);
+// The same over the given vertices (interior ones; every other vertex stays where it is).
+void optimize_vertices(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& variables, double emin, double emax);
 
 // ---- projection.cpp (section 4.5, Algorithm 4) --------------------------------------------------------
 
