@@ -77,7 +77,7 @@ def main():
     lines = ["## Remeshing: the dissertation's protocol vs CGAL isotropic_remeshing", "",
              f"Machine: {machine_line()}. Inputs: ../shared/models/seed-protocol (mean edge 2.25). carbonmesh: "
              "`carbonmesh remesh IN OUT --emin 1.2 --emax 1.8 --iterations 150 --kl 2 --kn 2 --p 0 --l 0.5 "
-             "--weights mean-value` (with the final feature snap and least-squares surface fit, the defaults; `--no-snap` and `--no-fit` leave every vertex on the input). CGAL: isotropic_remeshing, target 1.5, 10 iterations, borders protected. "
+             "--weights mean-value` (with the final feature snap and least-squares surface fit, the defaults; `--no-snap` skips the snap, `--no-fit` leaves every vertex on the input). CGAL: isotropic_remeshing, target 1.5, 10 iterations, borders protected. "
              "Seconds: the method's own time (carbonmesh's remesh() / CGAL's calls, without file IO); peak RSS: "
              "the whole process. Hausdorff: symmetric, to the input, 200k samples a side. CGAL's output is measured "
              "with `stats --repair` (it can contain degenerate triangles). Written by "
