@@ -48,4 +48,19 @@ std::size_t LocalRegion::flaws(const TriMesh& mesh, const std::vector<TriMesh::V
   return count;
 }
 
+void LocalRegion::faces(const TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& vertices,
+                        std::vector<TriMesh::FaceHandle>& out) {
+  if (face_mark_.size() < mesh.n_faces()) face_mark_.resize(mesh.n_faces(), 0);
+  ++stamp_;
+  out.clear();
+  for (auto v : vertices) {
+    if (mesh.status(v).deleted()) continue;
+    for (auto f : mesh.vf_range(v))
+      if (face_mark_[static_cast<std::size_t>(f.idx())] != stamp_) {
+        face_mark_[static_cast<std::size_t>(f.idx())] = stamp_;
+        out.push_back(f);
+      }
+  }
+}
+
 }  // namespace carbonmesh

@@ -17,6 +17,9 @@ class LocalRegion {
   // Edges outside [emin, emax] and faces with an angle under 3 degrees at the (undeleted) vertices, each edge
   // and face counted once.
   std::size_t flaws(const TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& vertices);
+  // The faces at the (undeleted) vertices, each once.
+  void faces(const TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& vertices,
+             std::vector<TriMesh::FaceHandle>& out);
 
  private:
   double emin_, emax_;

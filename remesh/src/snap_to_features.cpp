@@ -89,6 +89,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   LocalRegion local(emin, emax), search(emin, emax);
   std::vector<TriMesh::VertexHandle> region, inner, variables, around;
   std::vector<std::pair<TriMesh::VertexHandle, Vec3>> saved;
+  std::vector<TriMesh::FaceHandle> region_faces;
   std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
   std::vector<Vec3> neighbors;
   auto project = [&](TriMesh::VertexHandle v) {
@@ -100,9 +101,9 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   auto try_snap = [&](TriMesh::VertexHandle v, const Vec3& q) {
     local.collect(mesh, v, kn + 3, region);  // every vertex the relaxation moves, with their stars
     const std::size_t flaws_before = local.flaws(mesh, region);
+    local.faces(mesh, region, region_faces);  // each once: the fold check below runs every pass
     normals.clear();
-    for (auto w : region)
-      for (auto f : mesh.vf_range(w)) normals.emplace_back(f, geometry::face_normal(mesh, f));
+    for (auto f : region_faces) normals.emplace_back(f, geometry::face_normal(mesh, f));
     saved.assign(1, {v, mesh.point(v)});
     mesh.set_point(v, q);
     fixed[static_cast<std::size_t>(v.idx())] = 1;
