@@ -43,21 +43,39 @@ void ContactTerm::rebuild(const double* y, double s) {
   const CellGrid grid(points, ids, reach, 4.0 * static_cast<double>(atoms_) + 64);
   const auto& size = grid.size();
   const double reach2 = reach * reach;
-  for (std::size_t i = 0; i < atoms_; ++i) {
-    const Vec3& p = points[i];
-    const int c[3] = {grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)};
-    for (int x = std::max(c[0] - 1, 0); x <= std::min(c[0] + 1, size[0] - 1); ++x)
-      for (int z1 = std::max(c[1] - 1, 0); z1 <= std::min(c[1] + 1, size[1] - 1); ++z1)
-        for (int z2 = std::max(c[2] - 1, 0); z2 <= std::min(c[2] + 1, size[2] - 1); ++z2) {
-          const std::size_t cell = grid.cell_index(x, z1, z2);
-          for (int k = grid.begin(cell); k < grid.begin(cell + 1); ++k) {
-            const int j = grid.id(k);
-            if (j > static_cast<int>(i) && (p - grid.point(k)).sqrnorm() < reach2 && !bonded(static_cast<int>(i), j))
-              pairs_.push_back({static_cast<int>(i), j});
+  // Fixed chunks of atoms in parallel, each atom's partners sorted, the chunks joined in order: the list is in
+  // (i, j) order for any thread count.
+  constexpr std::size_t kChunk = 8192;
+  const long chunks = static_cast<long>((atoms_ + kChunk - 1) / kChunk);
+  std::vector<std::vector<std::array<int, 2>>> found(static_cast<std::size_t>(chunks));
+#pragma omp parallel for schedule(dynamic, 1) if (atoms_ >= 2 * kChunk)
+  for (long chunk = 0; chunk < chunks; ++chunk) {
+    auto& out = found[static_cast<std::size_t>(chunk)];
+    std::vector<int> partners;
+    const std::size_t end = std::min(atoms_, static_cast<std::size_t>(chunk + 1) * kChunk);
+    for (std::size_t i = static_cast<std::size_t>(chunk) * kChunk; i < end; ++i) {
+      const Vec3& p = points[i];
+      const int c[3] = {grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)};
+      partners.clear();
+      for (int x = std::max(c[0] - 1, 0); x <= std::min(c[0] + 1, size[0] - 1); ++x)
+        for (int z1 = std::max(c[1] - 1, 0); z1 <= std::min(c[1] + 1, size[1] - 1); ++z1)
+          for (int z2 = std::max(c[2] - 1, 0); z2 <= std::min(c[2] + 1, size[2] - 1); ++z2) {
+            const std::size_t cell = grid.cell_index(x, z1, z2);
+            for (int k = grid.begin(cell); k < grid.begin(cell + 1); ++k) {
+              const int j = grid.id(k);
+              if (j > static_cast<int>(i) && (p - grid.point(k)).sqrnorm() < reach2 &&
+                  !bonded(static_cast<int>(i), j))
+                partners.push_back(j);
+            }
           }
-        }
+      std::sort(partners.begin(), partners.end());
+      for (int j : partners) out.push_back({static_cast<int>(i), j});
+    }
   }
-  std::sort(pairs_.begin(), pairs_.end());
+  std::size_t total = 0;
+  for (const auto& f : found) total += f.size();
+  pairs_.reserve(total);
+  for (const auto& f : found) pairs_.insert(pairs_.end(), f.begin(), f.end());
 }
 
 double ContactTerm::add(const double* y, double s, double* gradient, double& gradient_scale) {
