@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -30,9 +31,13 @@ void validate(const RemeshSettings& s) {
 }
 
 // About how many triangles the remeshed surface has: the area over an equilateral triangle of the mid edge.
-void check_size(const TriMesh& mesh, const RemeshSettings& s) {
+double expected_faces(const TriMesh& mesh, const RemeshSettings& s) {
   const double m = 0.5 * (s.emin + s.emax);
-  const double faces = surface_area(mesh) / (std::sqrt(3.0) / 4.0 * m * m);
+  return surface_area(mesh) / (std::sqrt(3.0) / 4.0 * m * m);
+}
+
+void check_size(const TriMesh& mesh, const RemeshSettings& s) {
+  const double faces = expected_faces(mesh, s);
   if (!(faces <= s.max_faces))
     throw InputError(fmt::format("the interval [{}, {}] would need about {:.3g} triangles on this surface (area "
                                  "{:.6g}), more than the limit {:.3g}: check the units or scale the model",
@@ -41,6 +46,8 @@ void check_size(const TriMesh& mesh, const RemeshSettings& s) {
 
 constexpr int kStallIterations = 5;
 constexpr double kReorderShare = 0.2;
+constexpr int kCoarseIterations = 50;
+constexpr double kRunawayFactor = 4.0;  // faces over the expected count that stop a diverging loop
 
 // CalcEdgesPercent of Algorithm 1: long+short edges as a percentage of all edges.
 double troubling_percent(const EdgeStats& e) {
@@ -90,11 +97,52 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       (s.fit_surface || s.snap_features) && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
   auto projection_target = std::make_unique<ProjectionTarget>(*target);
   EdgeStats edges = edge_stats(mesh, interval);
+  // Coarse to fine: the coarser levels remesh this input (their own surface fit and snap off), then every edge
+  // is halved and the midpoints are put on the input. Not for an input that has every edge inside already.
+  if (s.coarse_levels > 0 && edges.long_edges + edges.short_edges > 0) {
+    RemeshSettings coarse = s;
+    coarse.emin = 2 * s.emin;
+    coarse.emax = 2 * s.emax;
+    coarse.coarse_levels = s.coarse_levels - 1;
+    // A coarse level converges within kCoarseIterations where it is a good start (fertility at 10^6 atoms: 16);
+    // one that has not by then is given up.
+    coarse.iterations = std::min(s.iterations, kCoarseIterations);
+    coarse.fit_surface = coarse.snap_features = false;
+    coarse.on_iteration = [&](const IterationLog& l) {
+      IterationLog shifted = l;
+      ++shifted.level;
+      shifted.seconds = seconds();
+      result.log.push_back(shifted);
+      if (s.on_iteration) s.on_iteration(shifted);
+    };
+    const RemeshResult c = remesh(mesh, coarse);
+    result.coarse_iterations = c.coarse_iterations + c.iterations;
+    // A coarse level that needed the post-processing (a feature thinner than twice the interval, such as an ear
+    // at a small structure size) is no starting point: the fine level then starts over from the input.
+    if (c.converged && !c.post_processed && !c.topology_violation && midpoint_subdivision(mesh)) {
+      result.coarse_levels = c.coarse_levels + 1;
+      result.bisected_vertices = c.bisected_vertices;
+      spatial_order(mesh);
+      projection(*projection_target, mesh, /*only_moved=*/false);
+      edges = edge_stats(mesh, interval);
+      spdlog::info("coarse level {} [{:.4f}, {:.4f}] converged in {} iterations, subdivided to {} vertices: {} long "
+                   "and {} short edges in [{:.4f}, {:.4f}]",
+                   result.coarse_levels, coarse.emin, coarse.emax, c.iterations, mesh.n_vertices(), edges.long_edges,
+                   edges.short_edges, s.emin, s.emax);
+    } else {
+      spdlog::info("coarse level [{:.4f}, {:.4f}] did not converge within its iterations ({} long, {} short before "
+                   "post-processing): remeshing the input at [{:.4f}, {:.4f}] directly",
+                   coarse.emin, coarse.emax, c.log.empty() ? 0 : c.log.back().long_edges,
+                   c.log.empty() ? 0 : c.log.back().short_edges, s.emin, s.emax);
+      mesh = *target;
+      edges = edge_stats(mesh, interval);
+    }
+  }
   // An input much coarser than the interval (a small model scaled up for a large structure): the first
   // iterations would split every edge once per pass and overshoot to many short edges. Longest-edge bisection
   // (OpenMesh's LongestEdgeT; new vertices at edge midpoints, so on the input) down to edges <= emax first:
   // fertility at 300000 atoms 19% less remeshing CPU time, 3 fewer iterations, 5% fewer non-hexagons.
-  if (edges.mean > 2 * s.emax) {
+  if (result.coarse_levels == 0 && edges.mean > 2 * s.emax) {
     const std::size_t before = mesh.n_vertices();
     OpenMesh::Subdivider::Uniform::LongestEdgeT<TriMesh, double> bisection;
     bisection.attach(mesh);
@@ -109,6 +157,10 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   }
   BestMesh best(mesh, edges.long_edges + edges.short_edges, valence_stats(mesh).percent_regular);
 
+  // The ceiling of the runaway guard below: kRunawayFactor times the faces the interval needs or the mesh has now,
+  // whichever is more, plus a floor for tiny surfaces.
+  const double faces_ceiling =
+      kRunawayFactor * std::max(expected_faces(mesh, s), static_cast<double>(mesh.n_faces())) + 1000;
   int iteration = 0;
   std::size_t churn = 0;
   std::size_t lowest = std::numeric_limits<std::size_t>::max();
@@ -178,6 +230,16 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     result.log.push_back(log);
     if (s.on_iteration) s.on_iteration(log);
     best.offer(mesh, edges.long_edges + edges.short_edges, valence.percent_regular);
+    // Section 4.1's intermediate interval follows the mean edge: once splits and collapses feed each other (the
+    // mean falling, the interval with it), the mesh grows without bound. Far more faces than the interval needs
+    // end the loop; the best mesh goes to the post-processing.
+    if (static_cast<double>(mesh.n_faces()) > faces_ceiling) {
+      spdlog::warn("remesh: {} faces where the interval needs about {:.0f}: the iterations diverge; stopped after "
+                   "iteration {} and kept the best mesh",
+                   mesh.n_faces(), expected_faces(mesh, s), iteration);
+      result.diverged = true;
+      break;
+    }
   }
   result.iterations = iteration;
   if (edges.long_edges + edges.short_edges > 0) {
@@ -251,10 +313,14 @@ nlohmann::json to_json(const RemeshResult& r) {
                    {"mean", l.mean},
                    {"std", l.std},
                    {"seconds", l.seconds},
-                   {"nonlinear", l.nonlinear}});
+                   {"nonlinear", l.nonlinear},
+                   {"level", l.level}});
   nlohmann::json j = {{"converged", r.converged},
           {"iterations", r.iterations},
+          {"coarse_levels", r.coarse_levels},
+          {"coarse_iterations", r.coarse_iterations},
           {"post_processed", r.post_processed},
+          {"diverged", r.diverged},
           {"bisected_vertices", r.bisected_vertices},
           {"long", r.long_edges},
           {"short", r.short_edges},

@@ -1,5 +1,6 @@
 // `carbonmesh remesh IN OUT --emin A --emax B [--iterations 150] [--kl 2] [--kn 2] [--p 0] [--l 0.5]
-//  [--weights mean-value|shape-preserving] [--no-fit] [--no-snap] [--log convergence.csv] [--json] [--repair]`
+//  [--weights mean-value|shape-preserving] [--no-fit] [--no-snap] [--coarse-levels k] [--log convergence.csv]
+//  [--json] [--repair]`
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -29,7 +30,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
   struct Options {
     std::string in, out, log;
     double emin = 0, emax = 0;
-    int iterations = 150, kl = 2, kn = 2, p = 0;
+    int iterations = 150, kl = 2, kn = 2, p = 0, coarse_levels = 0;
     double l = 0.5;
     ParametrizationWeights weights = ParametrizationWeights::MeanValue;
     bool json = false, repair = false, no_fit = false, no_snap = false;
@@ -50,6 +51,11 @@ void add_remesh_command(CLI::App& app, Action& action) {
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};
   cmd->add_option("--weights", opt->weights, "parametrization weights: mean-value or shape-preserving")
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
+  cmd->add_option("--coarse-levels", opt->coarse_levels,
+                  "remesh at 2^k times the interval first, then halve every edge k times (fewer valence defects; "
+                  "for fine intervals on large surfaces)")
+      ->default_val(0)
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-fit", opt->no_fit, "skip the final least-squares fit to the input (every vertex stays on the input, as in the dissertation; default: fit)");
   cmd->add_flag("--no-snap", opt->no_snap, "skip moving vertices onto input points the remeshed surface cuts off (ear rims, tips, grooves; default: snap)");
   cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
@@ -80,14 +86,15 @@ void add_remesh_command(CLI::App& app, Action& action) {
       settings.weights = opt->weights;
       settings.fit_surface = !opt->no_fit;
       settings.snap_features = !opt->no_snap;
+      settings.coarse_levels = opt->coarse_levels;
       std::ostringstream csv;
-      csv << "iteration,long,short,percent_regular,mean,std,seconds,nonlinear\n";
+      csv << "iteration,long,short,percent_regular,mean,std,seconds,nonlinear,level\n";
       settings.on_iteration = [&csv](const IterationLog& l) {
-        spdlog::info("iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  std {:.4f}  {:.2f}s{}",
-                     l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.std, l.seconds,
+        spdlog::info("{}iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  std {:.4f}  {:.2f}s{}",
+                     l.level > 0 ? fmt::format("level {} ", l.level) : "", l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.std, l.seconds,
                      l.nonlinear ? "  (nonlinear)" : "");
-        csv << fmt::format("{},{},{},{:.4f},{:.6f},{:.6f},{:.3f},{}\n", l.iteration, l.long_edges, l.short_edges,
-                           l.percent_regular, l.mean, l.std, l.seconds, l.nonlinear ? 1 : 0);
+        csv << fmt::format("{},{},{},{:.4f},{:.6f},{:.6f},{:.3f},{},{}\n", l.iteration, l.long_edges, l.short_edges,
+                           l.percent_regular, l.mean, l.std, l.seconds, l.nonlinear ? 1 : 0, l.level);
       };
       RemeshResult result;
       try {
@@ -111,10 +118,14 @@ void add_remesh_command(CLI::App& app, Action& action) {
         std::cout << j.dump(2) << "\n";
       } else {
         std::cout << fmt::format(
-            "{} -> {}\nlong {}  short {}  regular {:.2f}%  eval>1 {:.2f}%  iterations {}{}  {:.2f}s\n"
+            "{} -> {}\nlong {}  short {}  regular {:.2f}%  eval>1 {:.2f}%  iterations {}{}{}  {:.2f}s\n"
             "before: {}\nafter:  {}{}\n",
             opt->in, opt->out, result.long_edges, result.short_edges, result.percent_regular,
-            result.percent_eval_gt1, result.iterations, result.post_processed ? " (post-processed)" : "",
+            result.percent_eval_gt1, result.iterations,
+            result.coarse_iterations > 0 ? fmt::format(" (+{} at {} coarse level{})", result.coarse_iterations,
+                                                       result.coarse_levels, result.coarse_levels == 1 ? "" : "s")
+                                         : "",
+            result.post_processed ? " (post-processed)" : "",
             result.seconds, topology_text(result.before), topology_text(result.after),
             result.before.same_type(result.after) ? "" : "  (SURFACE TYPE CHANGED)");
         if (result.snapped)

@@ -176,6 +176,13 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
 // Returns false and leaves the mesh unchanged if a face cannot be re-added.
 bool spatial_order(TriMesh& mesh);
 
+// ---- midpoint_subdivision.cpp: the refinement of the coarse-to-fine remesh -----------------------------------
+
+// Splits every triangle into four at its edge midpoints (every new edge half an old one; old vertices keep their
+// valence, new ones have valence 6, or 4 on a border). Deleted elements are dropped and vertex properties are not
+// kept. Returns false and leaves the mesh unchanged if a face cannot be added (a non-manifold mesh).
+bool midpoint_subdivision(TriMesh& mesh);
+
 // ---- regularize (correct_valence.cpp): valence optimisation that keeps every edge inside -------------
 
 // After convergence: flips with J_mp > 0 (Eq 4.3) whose new diagonal may be outside [emin, emax] are tried

@@ -24,6 +24,7 @@ struct IterationLog {
   double mean = 0, std = 0;  // edge length
   double seconds = 0;        // since the start of remesh()
   bool nonlinear = false;    // the nonlinear optimizer ran instead of the low-pass filter
+  int level = 0;             // coarse-to-fine level: 0 the final interval, k the interval times 2^k
 };
 
 struct RemeshSettings {
@@ -46,14 +47,22 @@ struct RemeshSettings {
   // surface (snap_to_features in remesh_steps.hpp: ear rims, cone tips, grooves), every edge kept inside.
   bool snap_features = true;
   double snap_tolerance = 0.25;  // as a fraction of emin
+  // Coarse to fine: remesh into [2^k emin, 2^k emax] first, then k times split every triangle into four at its
+  // edge midpoints (halving every edge), project onto the input and continue at the next finer interval. For
+  // large structures: the fine level starts nearly converged, and with 4^k times fewer valence defects.
+  int coarse_levels = 0;
   // Called after every iteration (progress lines, CSV logs). May be empty.
   std::function<void(const IterationLog&)> on_iteration;
 };
 
 struct RemeshResult {
   bool converged = false;  // no long and no short edge left
-  int iterations = 0;
+  int iterations = 0;        // at the final interval
+  int coarse_levels = 0;     // levels remeshed at a coarser interval first (settings.coarse_levels)
+  int coarse_iterations = 0;  // iterations at those levels
   bool post_processed = false;
+  // The loop stopped early: the mesh had grown to 4 times the faces the interval needs (or it had at the start).
+  bool diverged = false;
   std::size_t bisected_vertices = 0;  // vertices added by the longest-edge bisection of an input with mean edge > 2 emax
   std::size_t long_edges = 0, short_edges = 0;
   double percent_regular = 0;
