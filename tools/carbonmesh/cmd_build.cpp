@@ -33,6 +33,7 @@ struct BuildOptions {
   std::string in, out;
   double bond = 1.42;
   std::optional<double> size, scale, atoms, emin, emax;
+  std::optional<int> coarse_levels;
   RemeshSettings remesh;
   DualOptimizeSettings optimize;
   bool passivate = false, topology = false, repair = false, no_report = false;
@@ -65,6 +66,7 @@ class StageClock {
 // The largest structure `build` makes (documented in README and docs/reliability.md): 1e8 atoms is about
 // 1e8 primal triangles, far beyond what the remesher and LAMMPS handle on one machine.
 constexpr double kMaxAtoms = 1e8;
+constexpr double kCoarseAtoms = 20000;  // the default coarse level from this structure size on (see run_build)
 
 // Option values CLI11 lets through (0, negative, nan, inf) are refused before any work, one line, exit 2.
 void check_options(const BuildOptions& o) {
@@ -160,9 +162,15 @@ int run_build(BuildOptions& o) {
   o.remesh.fit_surface = false;
   o.remesh.snap_features = false;  // likewise, and its distance trees over the whole mesh cost most at 1M atoms
   o.remesh.emax = scaled.emax;
+  // One coarse level for large structures: remeshed at twice the interval, every edge then halved. In the
+  // REBO2 energy after minimisation (fertility at 20000 and 80000 atoms, bunny at 80000) 34-46 meV/atom lower
+  // than the direct remesh, with a quarter of the 5-7 pairs from the coarse level; the remesh of 10^6 atoms
+  // takes a third of the time. Below kCoarseAtoms the coarse level (a quarter of the triangles) would be too
+  // coarse for most shapes; where it does not converge, the remesh falls back to the direct one anyway.
+  o.remesh.coarse_levels = o.coarse_levels.value_or(scaled.expected_atoms >= kCoarseAtoms ? 1 : 0);
   o.remesh.on_iteration = [](const IterationLog& l) {
-    spdlog::info("remesh iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  {:.2f}s{}",
-                 l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.seconds,
+    spdlog::info("remesh {}iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  {:.2f}s{}",
+                 l.level > 0 ? fmt::format("level {} ", l.level) : "", l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.seconds,
                  l.nonlinear ? "  (nonlinear)" : "");
   };
   RemeshResult remeshed;
@@ -312,6 +320,10 @@ void add_build_command(CLI::App& app, Action& action) {
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};
   cmd->add_option("--weights", opt->remesh.weights, "remesh: mean-value or shape-preserving")
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
+  cmd->add_option("--coarse-levels", opt->coarse_levels,
+                  "remesh: remesh at 2^k times the interval first, then halve every edge k times (default: 1 from "
+                  "20000 atoms on, else 0)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--optimize-iterations", opt->optimize.max_iterations, "dual optimisation: L-BFGS iterations (0: off)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--angle-weight", opt->optimize.angle_weight, "dual optimisation: weight w_a of the angle term (dimensionless, relative to the bond term)")
