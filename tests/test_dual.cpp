@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "carbonmesh/dual/coarse_start.hpp"
 #include "carbonmesh/dual/dual_mesh.hpp"
 #include "carbonmesh/dual/graph_stats.hpp"
 #include "carbonmesh/dual/optimize.hpp"
@@ -236,4 +237,39 @@ TEST(DualOptimize, ContactTermKeepsAThinTubeFromFolding) {
   const double a = closest_non_bonded(with), b = closest_non_bonded(without);
   EXPECT_GT(a, 1.5) << "without the term: " << b;  // measured: 1.86 with, 1.09 without
   EXPECT_LT(b, a);
+}
+
+// The coarse start moves every fine atom by the displacement of the coarse atoms around it: a uniform
+// displacement is passed on exactly, and one coarse atom's displacement goes mostly to the fine atoms nearest it.
+TEST(CoarseStart, PassesOnTheCoarseDisplacements) {
+  Dual fine = build_dual(make_icosphere({10.0, 3}));
+  const Dual coarse = build_dual(make_icosphere({10.0, 2}));
+  const std::vector<Vec3> from = coarse.positions(), before = fine.positions();
+  std::vector<Vec3> to = from;
+  const Vec3 t(0.3, -0.2, 0.1);
+  for (Vec3& p : to) p += t;
+  const CoarseStartResult r = coarse_start(fine, from, to);
+  EXPECT_EQ(r.atoms, fine.atoms());
+  EXPECT_NEAR(r.mean_shift, t.norm(), 1e-12);
+  EXPECT_NEAR(r.max_shift, t.norm(), 1e-12);
+  const std::vector<Vec3> after = fine.positions();
+  for (std::size_t i = 0; i < after.size(); ++i) EXPECT_NEAR((after[i] - before[i] - t).norm(), 0.0, 1e-12) << i;
+
+  // Only coarse atom 0 moves: the fine atom nearest it moves most, the far side of the sphere not at all.
+  Dual again = build_dual(make_icosphere({10.0, 3}));
+  to = from;
+  to[0] += Vec3(1, 0, 0);
+  coarse_start(again, from, to);
+  const std::vector<Vec3> moved = again.positions();
+  std::size_t nearest = 0, farthest = 0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    if ((before[i] - from[0]).norm() < (before[nearest] - from[0]).norm()) nearest = i;
+    if ((before[i] - from[0]).norm() > (before[farthest] - from[0]).norm()) farthest = i;
+  }
+  double largest = 0;
+  for (std::size_t i = 0; i < before.size(); ++i) largest = std::max(largest, (moved[i] - before[i]).norm());
+  EXPECT_DOUBLE_EQ((moved[nearest] - before[nearest]).norm(), largest);
+  EXPECT_GT(largest, 0.5);
+  EXPECT_EQ((moved[farthest] - before[farthest]).norm(), 0.0);
+  EXPECT_THROW(coarse_start(again, from, std::vector<Vec3>(1)), std::invalid_argument);
 }

@@ -326,6 +326,7 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   r.converged = lr.converged;
   r.energy_after = lr.energy;
   r.surface_scale = energy.scale(x);
+  r.scale_centre = centre;
 
   // Distances to s S (s times the distance of y to S) from the faces the optimiser ended on; then x.
   const double s = r.surface_scale;

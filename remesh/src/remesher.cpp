@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "carbonmesh/remesh/error.hpp"
@@ -115,11 +116,17 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.log.push_back(shifted);
       if (s.on_iteration) s.on_iteration(shifted);
     };
+    if (s.on_coarse_mesh)
+      coarse.on_coarse_mesh = [&](const TriMesh& m, int level) { s.on_coarse_mesh(m, level + 1); };
     const RemeshResult c = remesh(mesh, coarse);
     result.coarse_iterations = c.coarse_iterations + c.iterations;
     // A coarse level that needed the post-processing (a feature thinner than twice the interval, such as an ear
     // at a small structure size) is no starting point: the fine level then starts over from the input.
-    if (c.converged && !c.post_processed && !c.topology_violation && midpoint_subdivision(mesh)) {
+    const bool usable = c.converged && !c.post_processed && !c.topology_violation;
+    std::optional<TriMesh> coarse_mesh;
+    if (usable && s.on_coarse_mesh) coarse_mesh = mesh;
+    if (usable && midpoint_subdivision(mesh)) {
+      if (coarse_mesh) s.on_coarse_mesh(*coarse_mesh, 1);
       result.coarse_levels = c.coarse_levels + 1;
       result.bisected_vertices = c.bisected_vertices;
       spatial_order(mesh);

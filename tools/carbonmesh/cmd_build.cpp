@@ -15,6 +15,7 @@
 #include "carbonmesh/carbon/passivate.hpp"
 #include "carbonmesh/carbon/structure.hpp"
 #include "carbonmesh/carbon/structure_scale.hpp"
+#include "carbonmesh/dual/coarse_start.hpp"
 #include "carbonmesh/dual/dual_mesh.hpp"
 #include "carbonmesh/dual/optimize.hpp"
 #include "carbonmesh/remesh/atomic_file.hpp"
@@ -173,6 +174,10 @@ int run_build(BuildOptions& o) {
                  l.level > 0 ? fmt::format("level {} ", l.level) : "", l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.seconds,
                  l.nonlinear ? "  (nonlinear)" : "");
   };
+  std::optional<TriMesh> coarse_mesh;  // the level at twice the interval, for the coarse start of the optimisation
+  o.remesh.on_coarse_mesh = [&coarse_mesh](const TriMesh& m, int level) {
+    if (level == 1) coarse_mesh = m;
+  };
   RemeshResult remeshed;
   try {
     remeshed = remesh(mesh, o.remesh);
@@ -190,6 +195,28 @@ int run_build(BuildOptions& o) {
   Dual dual = build_dual(mesh);
   clock.stop("dual");
   o.optimize.bond = o.bond;
+  // Coarse start: the dual of the coarse level optimised at twice the bond (and window) gives the fine atoms
+  // their long-range displacements first (carbonmesh/dual/coarse_start.hpp).
+  std::optional<CoarseStartResult> started;
+  std::optional<DualOptimizeResult> coarse_optimized;
+  if (coarse_mesh && o.optimize.max_iterations > 0) {
+    Dual coarse = build_dual(*coarse_mesh);
+    coarse_mesh.reset();
+    const std::vector<Vec3> from = coarse.positions();
+    DualOptimizeSettings settings = o.optimize;
+    settings.bond = 2 * o.bond;
+    settings.bond_window = 2 * o.optimize.bond_window;
+    coarse_optimized = optimize_dual(coarse, surface, settings);
+    std::vector<Vec3> to = coarse.positions();
+    const Vec3 c = coarse_optimized->scale_centre;
+    for (Vec3& p : to) p = c + (p - c) / coarse_optimized->surface_scale;
+    started = coarse_start(dual, from, to);
+    spdlog::info("coarse start: {} coarse atoms optimised in {} iterations ({:.2f} s); fine atoms moved by {:.4f} A "
+                 "on average, {:.4f} A at most",
+                 coarse.atoms(), coarse_optimized->iterations, coarse_optimized->seconds, started->mean_shift,
+                 started->max_shift);
+    clock.stop("coarse optimize");
+  }
   const DualOptimizeResult optimized = optimize_dual(dual, surface, o.optimize);
   clock.stop("optimize");
   std::size_t small_rings = 0;  // rings of 3 or 4 atoms: no place in an sp2 carbon net
@@ -236,6 +263,12 @@ int run_build(BuildOptions& o) {
   summary["rings_by_size"] = to_json(dual.counts)["rings_by_size"];
   summary["percent_three_bonds"] = dual.counts.percent_three_bonds;
   summary["optimization"] = to_json(optimized);
+  if (started) {
+    summary["coarse_start"] = to_json(*coarse_optimized);
+    summary["coarse_start"]["fine_atoms_moved"] = started->atoms;
+    summary["coarse_start"]["mean_shift"] = started->mean_shift;
+    summary["coarse_start"]["max_shift"] = started->max_shift;
+  }
   if (passivation) summary["passivation"] = to_json(*passivation);
   summary["files"] = to_json(files);
   summary["files"]["remeshed_mesh"] = (dir / "remeshed.off").string();

@@ -54,6 +54,7 @@ struct DualOptimizeResult {
   double surface_rms_after = 0;
   double energy_before = 0, energy_after = 0;
   double surface_scale = 1;  // s (1 without free_scale); surface distances are to s S
+  Vec3 scale_centre{0, 0, 0};  // c: the atoms x sit at c + s (y - c), y on or near S
   int iterations = 0, evaluations = 0;
   bool converged = false;
   double seconds = 0;

@@ -51,6 +51,9 @@ struct RemeshSettings {
   // edge midpoints (halving every edge), project onto the input and continue at the next finer interval. For
   // large structures: the fine level starts nearly converged, and with 4^k times fewer valence defects.
   int coarse_levels = 0;
+  // Called with the mesh of every coarse level that converged, just before it is subdivided (level 1: the one at
+  // twice the interval; on the input, not fitted). May be empty.
+  std::function<void(const TriMesh&, int level)> on_coarse_mesh;
   // Called after every iteration (progress lines, CSV logs). May be empty.
   std::function<void(const IterationLog&)> on_iteration;
 };
