@@ -159,9 +159,10 @@ TEST(BuildCommand, SmallFullerenesHaveEveryBondWithinTheWindow) {
   fs::remove_all(dir);
 }
 
-// From 20000 atoms on, build remeshes coarse to fine and starts the dual optimisation from the optimised coarse
+// With a coarse level, build remeshes coarse to fine and starts the dual optimisation from the optimised coarse
 // level: on a torus (genus 1: as many heptagons as pentagons) every atom has three bonds and every bond is within
-// 1.42 +- 0.05 A, and the net has fewer non-hexagonal rings than the direct remesh (--coarse-levels 0) gives.
+// 1.42 +- 0.05 A, and the net has fewer non-hexagonal rings than the direct remesh (the default below 50000
+// atoms) gives.
 TEST(BuildCommand, CoarseToFineTorusHasFewerDefectsAndEveryBondInTheWindow) {
   const fs::path dir = temp_dir("coarse");
   save_mesh(make_torus({10.0, 4.0, 0.0}), dir / "torus.off");
@@ -172,10 +173,10 @@ TEST(BuildCommand, CoarseToFineTorusHasFewerDefectsAndEveryBondInTheWindow) {
     return n;
   };
   ASSERT_EQ(run("build " + (dir / "torus.off").string() + " -o " + (dir / "staged").string() +
-                " --atoms 24000 --no-report"),
+                " --atoms 24000 --no-report --coarse-levels 1"),
             0);
   ASSERT_EQ(run("build " + (dir / "torus.off").string() + " -o " + (dir / "direct").string() +
-                " --atoms 24000 --no-report --coarse-levels 0"),
+                " --atoms 24000 --no-report"),
             0);
   const nlohmann::json staged = read_json(dir / "staged" / "summary.json");
   const nlohmann::json direct = read_json(dir / "direct" / "summary.json");

@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "carbonmesh/remesh/error.hpp"
@@ -137,10 +138,13 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                    result.coarse_levels, coarse.emin, coarse.emax, c.iterations, mesh.n_vertices(), edges.long_edges,
                    edges.short_edges, s.emin, s.emax);
     } else {
-      spdlog::info("coarse level [{:.4f}, {:.4f}] did not converge within its iterations ({} long, {} short before "
-                   "post-processing): remeshing the input at [{:.4f}, {:.4f}] directly",
-                   coarse.emin, coarse.emax, c.log.empty() ? 0 : c.log.back().long_edges,
-                   c.log.empty() ? 0 : c.log.back().short_edges, s.emin, s.emax);
+      const std::string why =
+          usable ? "could not be subdivided (a non-manifold mesh)"
+                 : fmt::format("did not converge within its iterations ({} long, {} short before post-processing)",
+                               c.log.empty() ? 0 : c.log.back().long_edges,
+                               c.log.empty() ? 0 : c.log.back().short_edges);
+      spdlog::info("coarse level [{:.4f}, {:.4f}] {}: remeshing the input at [{:.4f}, {:.4f}] directly", coarse.emin,
+                   coarse.emax, why, s.emin, s.emax);
       mesh = *target;
       edges = edge_stats(mesh, interval);
     }

@@ -67,7 +67,7 @@ class StageClock {
 // The largest structure `build` makes (documented in README and docs/reliability.md): 1e8 atoms is about
 // 1e8 primal triangles, far beyond what the remesher and LAMMPS handle on one machine.
 constexpr double kMaxAtoms = 1e8;
-constexpr double kCoarseAtoms = 20000;  // the default coarse level from this structure size on (see run_build)
+constexpr double kCoarseAtoms = 50000;  // the default coarse level from this structure size on (see run_build)
 
 // Option values CLI11 lets through (0, negative, nan, inf) are refused before any work, one line, exit 2.
 void check_options(const BuildOptions& o) {
@@ -163,15 +163,17 @@ int run_build(BuildOptions& o) {
   o.remesh.fit_surface = false;
   o.remesh.snap_features = false;  // likewise, and its distance trees over the whole mesh cost most at 1M atoms
   o.remesh.emax = scaled.emax;
-  // One coarse level for large structures: remeshed at twice the interval, every edge then halved. In the
-  // REBO2 energy after minimisation (fertility at 20000 and 80000 atoms, bunny at 80000) 34-46 meV/atom lower
-  // than the direct remesh, with a quarter of the 5-7 pairs from the coarse level; the remesh of 10^6 atoms
-  // takes a third of the time. Below kCoarseAtoms the coarse level (a quarter of the triangles) would be too
-  // coarse for most shapes; where it does not converge, the remesh falls back to the direct one anyway.
+  // One coarse level for large structures: remeshed at twice the interval, every edge then halved, and the dual
+  // optimisation started from the optimised coarse dual. Bunny, fertility and a torus at 24000-80000 atoms: a
+  // REBO2 energy 34-46 meV/atom lower after minimisation than the direct remesh, with a quarter of the 5-7 pairs
+  // from the coarse level; fertility at 10^6 atoms in a third of the time. The coarse level has a quarter of the
+  // triangles: at 20000 atoms neither bunny's nor fertility's converged (ears, handles) and the fallback to the
+  // direct remesh only cost time, so the default starts at kCoarseAtoms.
   o.remesh.coarse_levels = o.coarse_levels.value_or(scaled.expected_atoms >= kCoarseAtoms ? 1 : 0);
   o.remesh.on_iteration = [](const IterationLog& l) {
     spdlog::info("remesh {}iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  {:.2f}s{}",
-                 l.level > 0 ? fmt::format("level {} ", l.level) : "", l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.seconds,
+                 l.level > 0 ? fmt::format("level {} ", l.level) : "", l.iteration, l.long_edges, l.short_edges,
+                 l.percent_regular, l.mean, l.seconds,
                  l.nonlinear ? "  (nonlinear)" : "");
   };
   std::optional<TriMesh> coarse_mesh;  // the level at twice the interval, for the coarse start of the optimisation
@@ -355,7 +357,7 @@ void add_build_command(CLI::App& app, Action& action) {
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
   cmd->add_option("--coarse-levels", opt->coarse_levels,
                   "remesh: remesh at 2^k times the interval first, then halve every edge k times (default: 1 from "
-                  "20000 atoms on, else 0)")
+                  "50000 atoms on, else 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--optimize-iterations", opt->optimize.max_iterations, "dual optimisation: L-BFGS iterations (0: off)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
