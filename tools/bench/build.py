@@ -18,7 +18,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_common import machine_line, replace_section  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-STAGES = ["load", "scale", "remesh", "dual", "optimize", "write"]
+STAGES = ["load", "scale", "remesh", "dual", "coarse optimize", "optimize", "write"]
 
 
 def timed_with_limit(command, limit):
