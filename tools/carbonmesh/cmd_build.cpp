@@ -165,7 +165,7 @@ int run_build(BuildOptions& o) {
   o.remesh.emax = scaled.emax;
   // One coarse level for large structures: remeshed at twice the interval, every edge then halved, and the dual
   // optimisation started from the optimised coarse dual. Bunny, fertility and a torus at 24000-80000 atoms: a
-  // REBO2 energy 34-46 meV/atom lower after minimisation than the direct remesh, with a quarter of the 5-7 pairs
+  // REBO2 energy 34-49 meV/atom lower after minimisation than the direct remesh, with a quarter of the 5-7 pairs
   // from the coarse level; fertility at 10^6 atoms in a third of the time. The coarse level has a quarter of the
   // triangles: at 20000 atoms neither bunny's nor fertility's converged (ears, handles) and the fallback to the
   // direct remesh only cost time, so the default starts at kCoarseAtoms.
