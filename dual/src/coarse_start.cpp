@@ -16,8 +16,8 @@ CoarseStartResult coarse_start(Dual& fine, const std::vector<Vec3>& from, const 
   CoarseStartResult r;
   if (from.empty() || fine.atoms() == 0) return r;
   constexpr int kNearest = 4;
-  // Cells of about two coarse bonds (the mean nearest spacing estimated from the bounding box would be fragile on
-  // thin shapes; the coarse net's own bond scale is not known here): sized by the grid's cap of ~1 atom per cell.
+  // Cells sized by the grid's cap of one cell per coarse atom over the bounding box (on a surface several atoms
+  // share an occupied cell); the search below grows cube shells of cells until the nearest are certain.
   std::vector<int> ids(from.size());
   std::iota(ids.begin(), ids.end(), 0);
   const CellGrid grid(from, ids, 0.0, static_cast<double>(from.size()));
