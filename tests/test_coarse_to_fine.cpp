@@ -8,18 +8,16 @@
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/remesher.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "test_meshes.hpp"
 
 namespace carbonmesh {
 namespace {
 
-TriMesh scaled(TriMesh mesh, double mean) {
-  const double factor = mean / edge_stats(mesh).mean;
-  for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * factor);
-  return mesh;
-}
+using test::scaled;
 
 // Four faces per face, a vertex per edge, every edge half of an old one, old valences kept and every new
-// vertex of valence 6; on a torus (genus 1) and on a capped sphere with a border (new border vertices: 4).
+// vertex of valence 6; on a torus (genus 1) and on an icosphere with one face removed (a border; new border
+// vertices have valence 4).
 TEST(MidpointSubdivision, HalvesEveryEdgeAndKeepsTheSurfaceType) {
   for (TriMesh mesh : {make_torus({10.0, 4.0, 0.0}), make_icosphere({10.0, 2})}) {
     const bool with_border = mesh.n_faces() == make_icosphere({10.0, 2}).n_faces();

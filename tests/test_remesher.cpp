@@ -15,16 +15,12 @@
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/remesher.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "test_meshes.hpp"
 
 namespace carbonmesh {
 namespace {
 
-// Scales a mesh about the origin so that its mean edge length is `mean`.
-TriMesh scaled(TriMesh mesh, double mean) {
-  const double factor = mean / edge_stats(mesh).mean;
-  for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * factor);
-  return mesh;
-}
+using test::scaled;
 
 TriMesh sphere(int subdivisions, double mean) { return scaled(make_icosphere({10.0, subdivisions}), mean); }
 TriMesh torus(double edge, double mean) { return scaled(make_torus({10.0, 4.0, edge}), mean); }
