@@ -241,14 +241,14 @@ TEST(DualOptimize, ContactTermKeepsAThinTubeFromFolding) {
 
 // The coarse start moves every fine atom by the displacement of the coarse atoms around it: a uniform
 // displacement is passed on exactly, and one coarse atom's displacement goes mostly to the fine atoms nearest it.
-TEST(CoarseStart, PassesOnTheCoarseDisplacements) {
+TEST(CoarseStart, TransferPassesOnTheCoarseDisplacements) {
   Dual fine = build_dual(make_icosphere({10.0, 3}));
   const Dual coarse = build_dual(make_icosphere({10.0, 2}));
   const std::vector<Vec3> from = coarse.positions(), before = fine.positions();
   std::vector<Vec3> to = from;
   const Vec3 t(0.3, -0.2, 0.1);
   for (Vec3& p : to) p += t;
-  const CoarseStartResult r = coarse_start(fine, from, to);
+  const DisplacementTransfer r = transfer_displacements(fine, from, to);
   EXPECT_EQ(r.atoms, fine.atoms());
   EXPECT_NEAR(r.mean_shift, t.norm(), 1e-12);
   EXPECT_NEAR(r.max_shift, t.norm(), 1e-12);
@@ -259,7 +259,7 @@ TEST(CoarseStart, PassesOnTheCoarseDisplacements) {
   Dual again = build_dual(make_icosphere({10.0, 3}));
   to = from;
   to[0] += Vec3(1, 0, 0);
-  coarse_start(again, from, to);
+  transfer_displacements(again, from, to);
   const std::vector<Vec3> moved = again.positions();
   std::size_t nearest = 0, farthest = 0;
   for (std::size_t i = 0; i < before.size(); ++i) {
@@ -271,5 +271,26 @@ TEST(CoarseStart, PassesOnTheCoarseDisplacements) {
   EXPECT_DOUBLE_EQ((moved[nearest] - before[nearest]).norm(), largest);
   EXPECT_GT(largest, 0.5);
   EXPECT_EQ((moved[farthest] - before[farthest]).norm(), 0.0);
-  EXPECT_THROW(coarse_start(again, from, std::vector<Vec3>(1)), std::invalid_argument);
+  EXPECT_THROW(transfer_displacements(again, from, std::vector<Vec3>(1)), std::invalid_argument);
+}
+
+// The whole coarse start: the coarse dual (icosphere one subdivision coarser, on the same sphere) is optimised at
+// bond 2 b, its bonds end near 2 b, and every fine atom is moved by what it did.
+TEST(CoarseStart, OptimisesTheCoarseDualAtTwiceTheBond) {
+  const TriMesh surface = fullerene_surface(3, 1.42);
+  const double radius = surface.point(*surface.vertices().begin()).norm();
+  TriMesh coarse_mesh = make_icosphere({radius, 2});
+  Dual fine = build_dual(surface);
+  const std::vector<Vec3> before = fine.positions();
+  DualOptimizeSettings settings;
+  const CoarseStartResult r = coarse_start(fine, coarse_mesh, surface, settings);
+  EXPECT_EQ(r.coarse_atoms, coarse_mesh.n_faces());
+  EXPECT_TRUE(r.coarse.converged);
+  EXPECT_NEAR(r.coarse.bonds_after.mean, 2 * 1.42, 0.02 * 2 * 1.42);
+  EXPECT_EQ(r.transfer.atoms, fine.atoms());
+  EXPECT_GT(r.transfer.max_shift, 0.0);
+  const std::vector<Vec3> after = fine.positions();
+  double largest = 0;
+  for (std::size_t i = 0; i < after.size(); ++i) largest = std::max(largest, (after[i] - before[i]).norm());
+  EXPECT_NEAR(largest, r.transfer.max_shift, 1e-12);
 }

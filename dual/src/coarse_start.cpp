@@ -7,13 +7,15 @@
 #include <numeric>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "carbonmesh/remesh/cell_grid.hpp"
 
 namespace carbonmesh {
 
-CoarseStartResult coarse_start(Dual& fine, const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
-  if (from.size() != to.size()) throw std::invalid_argument("coarse_start: from and to differ in size");
-  CoarseStartResult r;
+DisplacementTransfer transfer_displacements(Dual& fine, const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
+  if (from.size() != to.size()) throw std::invalid_argument("transfer_displacements: from and to differ in size");
+  DisplacementTransfer r;
   if (from.empty() || fine.atoms() == 0) return r;
   constexpr int kNearest = 4;
   // Cells sized by the grid's cap of one cell per coarse atom over the bounding box (on a surface several atoms
@@ -69,6 +71,33 @@ CoarseStartResult coarse_start(Dual& fine, const std::vector<Vec3>& from, const 
   for (double s : shift) r.mean_shift += s, r.max_shift = std::max(r.max_shift, s);
   r.mean_shift /= static_cast<double>(positions.size());
   return r;
+}
+
+CoarseStartResult coarse_start(Dual& fine, const TriMesh& coarse_mesh, const TriMesh& surface,
+                               const DualOptimizeSettings& settings) {
+  Dual coarse = build_dual(coarse_mesh);
+  const std::vector<Vec3> from = coarse.positions();
+  DualOptimizeSettings doubled = settings;
+  doubled.bond = 2 * settings.bond;
+  doubled.bond_window = 2 * settings.bond_window;
+  CoarseStartResult r;
+  r.coarse_atoms = coarse.atoms();
+  r.coarse = optimize_dual(coarse, surface, doubled);
+  // Back to the unscaled frame: the optimisation put the atoms at c + s (y - c).
+  std::vector<Vec3> to = coarse.positions();
+  const Vec3 c = r.coarse.scale_centre;
+  for (Vec3& p : to) p = c + (p - c) / r.coarse.surface_scale;
+  r.transfer = transfer_displacements(fine, from, to);
+  return r;
+}
+
+nlohmann::json to_json(const CoarseStartResult& r) {
+  nlohmann::json j = to_json(r.coarse);
+  j["coarse_atoms"] = r.coarse_atoms;
+  j["fine_atoms_moved"] = r.transfer.atoms;
+  j["mean_shift"] = r.transfer.mean_shift;
+  j["max_shift"] = r.transfer.max_shift;
+  return j;
 }
 
 }  // namespace carbonmesh

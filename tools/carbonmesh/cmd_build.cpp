@@ -200,23 +200,13 @@ int run_build(BuildOptions& o) {
   // Coarse start: the dual of the coarse level optimised at twice the bond (and window) gives the fine atoms
   // their long-range displacements first (carbonmesh/dual/coarse_start.hpp).
   std::optional<CoarseStartResult> started;
-  std::optional<DualOptimizeResult> coarse_optimized;
   if (coarse_mesh && o.optimize.max_iterations > 0) {
-    Dual coarse = build_dual(*coarse_mesh);
+    started = coarse_start(dual, *coarse_mesh, surface, o.optimize);
     coarse_mesh.reset();
-    const std::vector<Vec3> from = coarse.positions();
-    DualOptimizeSettings settings = o.optimize;
-    settings.bond = 2 * o.bond;
-    settings.bond_window = 2 * o.optimize.bond_window;
-    coarse_optimized = optimize_dual(coarse, surface, settings);
-    std::vector<Vec3> to = coarse.positions();
-    const Vec3 c = coarse_optimized->scale_centre;
-    for (Vec3& p : to) p = c + (p - c) / coarse_optimized->surface_scale;
-    started = coarse_start(dual, from, to);
     spdlog::info("coarse start: {} coarse atoms optimised in {} iterations ({:.2f} s); fine atoms moved by {:.4f} A "
                  "on average, {:.4f} A at most",
-                 coarse.atoms(), coarse_optimized->iterations, coarse_optimized->seconds, started->mean_shift,
-                 started->max_shift);
+                 started->coarse_atoms, started->coarse.iterations, started->coarse.seconds,
+                 started->transfer.mean_shift, started->transfer.max_shift);
     clock.stop("coarse optimize");
   }
   const DualOptimizeResult optimized = optimize_dual(dual, surface, o.optimize);
@@ -265,12 +255,7 @@ int run_build(BuildOptions& o) {
   summary["rings_by_size"] = to_json(dual.counts)["rings_by_size"];
   summary["percent_three_bonds"] = dual.counts.percent_three_bonds;
   summary["optimization"] = to_json(optimized);
-  if (started) {
-    summary["coarse_start"] = to_json(*coarse_optimized);
-    summary["coarse_start"]["fine_atoms_moved"] = started->atoms;
-    summary["coarse_start"]["mean_shift"] = started->mean_shift;
-    summary["coarse_start"]["max_shift"] = started->max_shift;
-  }
+  if (started) summary["coarse_start"] = to_json(*started);
   if (passivation) summary["passivation"] = to_json(*passivation);
   summary["files"] = to_json(files);
   summary["files"]["remeshed_mesh"] = (dir / "remeshed.off").string();

@@ -8,16 +8,33 @@
 #include <vector>
 
 #include "carbonmesh/dual/dual_mesh.hpp"
+#include "carbonmesh/dual/optimize.hpp"
+#include "carbonmesh/remesh/mesh.hpp"
 
 namespace carbonmesh {
 
-struct CoarseStartResult {
-  std::size_t atoms = 0;              // fine atoms moved
+struct DisplacementTransfer {
+  std::size_t atoms = 0;                 // fine atoms moved
   double mean_shift = 0, max_shift = 0;  // how far (Angstrom)
 };
 
-// `from`: the coarse atoms where the coarse optimisation started (triangle centroids); `to`: where it ended, on
-// the unscaled surface (DualOptimizeResult::unscaled). Moves the atoms of `fine`. Deterministic.
-CoarseStartResult coarse_start(Dual& fine, const std::vector<Vec3>& from, const std::vector<Vec3>& to);
+// `from`: the coarse atoms where the coarse optimisation started (triangle centroids); `to`: where it ended, in
+// the unscaled frame (on or near the surface itself). Moves every atom of `fine` by the inverse-distance-weighted
+// displacement to - from of the four coarse atoms nearest it. Deterministic. Throws std::invalid_argument if from
+// and to differ in size.
+DisplacementTransfer transfer_displacements(Dual& fine, const std::vector<Vec3>& from, const std::vector<Vec3>& to);
+
+struct CoarseStartResult {
+  std::size_t coarse_atoms = 0;
+  DualOptimizeResult coarse;     // the coarse dual's optimisation
+  DisplacementTransfer transfer;  // what it did to the fine atoms
+};
+
+// Builds the dual of `coarse_mesh`, optimises it on `surface` with `settings` at twice the bond and the bond window
+// (every other setting as given), and moves the atoms of `fine` by its displacements (transfer_displacements).
+CoarseStartResult coarse_start(Dual& fine, const TriMesh& coarse_mesh, const TriMesh& surface,
+                               const DualOptimizeSettings& settings);
+
+nlohmann::json to_json(const CoarseStartResult& r);
 
 }  // namespace carbonmesh
