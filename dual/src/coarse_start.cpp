@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "carbonmesh/remesh/cell_grid.hpp"
+#include "carbonmesh/remesh/point_grid.hpp"
 
 namespace carbonmesh {
 
@@ -17,54 +17,32 @@ DisplacementTransfer transfer_displacements(Dual& fine, const std::vector<Vec3>&
   if (from.size() != to.size()) throw std::invalid_argument("transfer_displacements: from and to differ in size");
   DisplacementTransfer r;
   if (from.empty() || fine.atoms() == 0) return r;
-  constexpr int kNearest = 4;
-  // Cells sized by the grid's cap of one cell per coarse atom over the bounding box (on a surface several atoms
-  // share an occupied cell); the search below grows cube shells of cells until the nearest are certain.
+  constexpr std::size_t kNearest = 4;
+  // Cells sized by the grid's cap of about one cell per coarse atom over the bounding box.
   std::vector<int> ids(from.size());
   std::iota(ids.begin(), ids.end(), 0);
-  const CellGrid grid(from, ids, 0.0, static_cast<double>(from.size()));
-  const auto& size = grid.size();
+  const PointGrid grid(from, ids, 0.0, static_cast<double>(from.size()));
   std::vector<Vec3> positions = fine.positions();
   const long n = static_cast<long>(positions.size());
   std::vector<double> shift(positions.size(), 0.0);
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
-    Vec3& p = positions[static_cast<std::size_t>(i)];
-    // The kNearest coarse atoms: grow a cube of cells around p until it holds them and the cube's inner reach is
-    // beyond the farthest kept one.
-    std::array<std::pair<double, int>, kNearest> best;
-    best.fill({std::numeric_limits<double>::infinity(), -1});
-    const int c[3] = {grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)};
-    const int widest = std::max({size[0], size[1], size[2]});
-    for (int radius = 0; radius <= widest; ++radius) {
-      for (int x = std::max(c[0] - radius, 0); x <= std::min(c[0] + radius, size[0] - 1); ++x)
-        for (int y = std::max(c[1] - radius, 0); y <= std::min(c[1] + radius, size[1] - 1); ++y)
-          for (int z = std::max(c[2] - radius, 0); z <= std::min(c[2] + radius, size[2] - 1); ++z) {
-            if (std::max({std::abs(x - c[0]), std::abs(y - c[1]), std::abs(z - c[2])}) != radius) continue;
-            const std::size_t cell = grid.cell_index(x, y, z);
-            for (int k = grid.begin(cell); k < grid.begin(cell + 1); ++k) {
-              const std::pair<double, int> candidate{(p - grid.point(k)).sqrnorm(), grid.id(k)};
-              if (candidate < best.back()) {
-                best.back() = candidate;
-                std::sort(best.begin(), best.end());
-              }
-            }
-          }
-      // Every point not yet seen lies farther than radius cells from p's cell.
-      const double reach = radius * grid.cell();
-      if (best.back().second >= 0 && best.back().first <= reach * reach) break;
+#pragma omp parallel
+  {
+    std::vector<std::pair<double, int>> best;
+#pragma omp for schedule(static)
+    for (long i = 0; i < n; ++i) {
+      Vec3& p = positions[static_cast<std::size_t>(i)];
+      grid.nearest(p, kNearest, best);
+      Vec3 d(0, 0, 0);
+      double weights = 0;
+      for (const auto& [d2, j] : best) {
+        const double w = 1.0 / (d2 + 1e-12);
+        d += w * (to[static_cast<std::size_t>(j)] - from[static_cast<std::size_t>(j)]);
+        weights += w;
+      }
+      if (weights > 0) d /= weights;
+      p += d;
+      shift[static_cast<std::size_t>(i)] = d.norm();
     }
-    Vec3 d(0, 0, 0);
-    double weights = 0;
-    for (const auto& [d2, j] : best) {
-      if (j < 0) continue;
-      const double w = 1.0 / (d2 + 1e-12);
-      d += w * (to[static_cast<std::size_t>(j)] - from[static_cast<std::size_t>(j)]);
-      weights += w;
-    }
-    if (weights > 0) d /= weights;
-    p += d;
-    shift[static_cast<std::size_t>(i)] = d.norm();
   }
   fine.set_positions(positions);
   r.atoms = positions.size();
