@@ -11,184 +11,15 @@
 #include <numbers>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <string>
 
 #include "carbonmesh/remesh/morton_order.hpp"
-#include "contact_term.hpp"
+#include "dual_energy.hpp"
 #include "lbfgs.hpp"
 #include "surface_projector.hpp"
 
 namespace carbonmesh {
 namespace {
-
-// Classes of terms no two of which share an atom (greedy colouring in term order): the terms of one class can
-// add to the gradient in parallel without two threads writing the same atom, and the classes run in a fixed
-// order, so every atom's gradient is summed in the same order for any thread count.
-template <std::size_t K>
-std::vector<std::vector<std::uint32_t>> conflict_free_classes(const std::vector<std::array<int, K>>& terms,
-                                                               std::size_t atoms) {
-  std::vector<std::uint64_t> used(atoms, 0);
-  std::vector<std::vector<std::uint32_t>> classes;
-  for (std::size_t t = 0; t < terms.size(); ++t) {
-    std::uint64_t taken = 0;
-    for (int a : terms[t]) taken |= used[static_cast<std::size_t>(a)];
-    int c = 0;
-    while (c < 64 && (taken >> c & 1u)) ++c;
-    if (c == 64) return {};  // not for a net of degree <= 3: the caller then sums in one pass
-    if (static_cast<std::size_t>(c) >= classes.size()) classes.resize(static_cast<std::size_t>(c) + 1);
-    classes[static_cast<std::size_t>(c)].push_back(static_cast<std::uint32_t>(t));
-    for (int a : terms[t]) used[static_cast<std::size_t>(a)] |= std::uint64_t{1} << c;
-  }
-  return classes;
-}
-
-// Sums term(i, e, gs) over i in [0, n) in parallel with a result that does not depend on the thread count:
-// fixed chunks, their partial sums added in chunk order.
-template <class Term>
-void chunked_sum(std::size_t n, std::vector<std::array<double, 2>>& partial, double& e, double& gs, Term&& term) {
-  constexpr std::size_t kChunk = 4096;
-  const long chunks = static_cast<long>((n + kChunk - 1) / kChunk);
-  partial.assign(static_cast<std::size_t>(chunks), {0.0, 0.0});
-#pragma omp parallel for schedule(static)
-  for (long c = 0; c < chunks; ++c) {
-    double ce = 0, cg = 0;
-    const std::size_t end = std::min(n, static_cast<std::size_t>(c + 1) * kChunk);
-    for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i) term(i, ce, cg);
-    partial[static_cast<std::size_t>(c)] = {ce, cg};
-  }
-  for (const auto& [pe, pg] : partial) e += pe, gs += pg;
-}
-
-// The unknowns are y (3n coordinates) and, with a free scale, u: the atoms sit at x = c + s (y - c) with
-// s = 1 + u / radius, c the area centroid of S and radius the RMS distance of S from c. Bond lengths are s |y_i - y_j|,
-// angles do not depend on s, and the distance of x to s S is s d(y, S). So a change of u moves every atom and
-// the surface together, and the size of the structure is one well-conditioned direction of the minimisation
-// (holding atoms on a moving surface through the surface springs instead converges very slowly).
-class DualEnergy {
- public:
-  DualEnergy(const std::vector<AtomPair>& bonds, const std::vector<AtomTriple>& angles,
-             const std::vector<double>& target_cosines, const detail::SurfaceProjector& projector, double radius,
-             std::vector<int> faces, const DualOptimizeSettings& s)
-      : bonds_(bonds), angles_(angles), target_cosines_(target_cosines), projector_(projector), radius_(radius),
-        faces_(std::move(faces)), s_(s),
-        contacts_(faces_.size(), bonds, std::numbers::sqrt2 * s.bond, s.contact_weight),
-        bond_classes_(parallel() ? conflict_free_classes(bonds, faces_.size()) : Classes{}),
-        angle_classes_(parallel() ? conflict_free_classes(angles, faces_.size()) : Classes{}) {}
-
-  double scale(const Eigen::VectorXd& x) const {
-    return s_.free_scale ? 1.0 + x[x.size() - 1] / radius_ : 1.0;
-  }
-  const std::vector<int>& faces() const { return faces_; }
-
-  double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
-    const std::size_t n = faces_.size();
-    g.setZero(x.size());
-    const double* px = x.data();
-    double* pg = g.data();
-    double e = 0, gs = 0;  // gs = dE/ds
-    const double b = s_.bond;
-    const double s = scale(x);
-    const double window = s_.bond_window, window_weight = s_.bond_window_weight;
-    // Large structures sum their bond and angle terms class by class in parallel; small ones (where a parallel
-    // region per class costs more than the loop) and a class list that could not be built go in one pass in
-    // term order, the memory order of the atoms.
-    auto sum_terms = [&](const Classes& classes, std::size_t count, auto&& term) {
-      if (classes.empty()) {
-        for (std::size_t i = 0; i < count; ++i) term(i, e, gs);
-        return;
-      }
-      for (const auto& members : classes)
-        chunked_sum(members.size(), partial_sums_, e, gs,
-                    [&](std::size_t m, double& ce, double& cg) { term(members[m], ce, cg); });
-    };
-    auto bond_term = [&](std::size_t index, double& ce, double& cg) {
-      const auto& bond = bonds_[index];
-      const double* p = px + 3 * bond[0];
-      const double* q = px + 3 * bond[1];
-      const double r0 = p[0] - q[0], r1 = p[1] - q[1], r2 = p[2] - q[2];
-      const double length = std::sqrt(r0 * r0 + r1 * r1 + r2 * r2);
-      if (length == 0) return;
-      const double diff = s * length - b;
-      // (diff)^2 plus the window hinge w_h (|diff| - delta)^2 outside b +- delta: dE/d(diff) = de.
-      double de = 2 * diff;
-      ce += diff * diff;
-      const double over = std::abs(diff) - window;
-      if (over > 0) {
-        ce += window_weight * over * over;
-        de += 2 * window_weight * over * (diff > 0 ? 1 : -1);
-      }
-      cg += de * length;
-      const double k = de * s / length;
-      double* gp = pg + 3 * bond[0];
-      double* gq = pg + 3 * bond[1];
-      gp[0] += k * r0, gp[1] += k * r1, gp[2] += k * r2;
-      gq[0] -= k * r0, gq[1] -= k * r1, gq[2] -= k * r2;
-    };
-    sum_terms(bond_classes_, bonds_.size(), bond_term);
-    const double wa = s_.angle_weight * b * b;
-    if (wa > 0) {
-      auto angle_term = [&](std::size_t a, double& ce, double&) {
-        const AtomTriple& t = angles_[a];
-        const Eigen::Map<const Eigen::Vector3d> c(px + 3 * t[1]);
-        const Eigen::Vector3d u = Eigen::Map<const Eigen::Vector3d>(px + 3 * t[0]) - c;
-        const Eigen::Vector3d v = Eigen::Map<const Eigen::Vector3d>(px + 3 * t[2]) - c;
-        const double lu2 = u.squaredNorm(), lv2 = v.squaredNorm();
-        if (lu2 == 0 || lv2 == 0) return;
-        const double inv = 1.0 / std::sqrt(lu2 * lv2);
-        const double cosine = u.dot(v) * inv;
-        const double diff = cosine - target_cosines_[a];
-        ce += wa * diff * diff;
-        const double de = 2 * wa * diff;
-        const Eigen::Vector3d du = de * (v * inv - (cosine / lu2) * u);
-        const Eigen::Vector3d dv = de * (u * inv - (cosine / lv2) * v);
-        Eigen::Map<Eigen::Vector3d>(pg + 3 * t[0]) += du;
-        Eigen::Map<Eigen::Vector3d>(pg + 3 * t[2]) += dv;
-        Eigen::Map<Eigen::Vector3d>(pg + 3 * t[1]) -= du + dv;
-      };
-      sum_terms(angle_classes_, angles_.size(), angle_term);
-    }
-    if (s_.surface_weight > 0) {
-      const double w = s_.surface_weight * s * s;
-      const long count = static_cast<long>(n);
-      // Per atom independent (the walk starts at that atom's own face): deterministic in parallel; the sum is
-      // reduced in a fixed order below. Parallel only for large structures: on a loaded machine a parallel
-      // region per evaluation costs more than a small loop.
-      partial_.resize(n);
-#pragma omp parallel for schedule(static) if (parallel())
-      for (long i = 0; i < count; ++i) {
-        const std::size_t k = static_cast<std::size_t>(i);
-        const Vec3 p(px[3 * i], px[3 * i + 1], px[3 * i + 2]);
-        const Vec3 d = p - projector_.closest_point_near(p, faces_[k]);
-        partial_[k] = d.sqrnorm();
-        for (int j = 0; j < 3; ++j) pg[3 * i + j] += 2 * w * d[j];
-      }
-      double d2 = 0;
-      for (std::size_t k = 0; k < n; ++k) d2 += partial_[k];
-      e += w * d2;
-      gs += 2 * s_.surface_weight * s * d2;
-    }
-    e += contacts_.add(px, s, pg, gs);
-    if (s_.free_scale) pg[x.size() - 1] = gs / radius_;
-    return e;
-  }
-  std::size_t contact_rebuilds() const { return contacts_.rebuilds(); }
-
- private:
-  using Classes = std::vector<std::vector<std::uint32_t>>;  // conflict_free_classes; empty: one pass
-  static constexpr std::size_t kParallelAtoms = 20000;
-  bool parallel() const { return faces_.size() >= kParallelAtoms; }
-
-  const std::vector<AtomPair>& bonds_;
-  const std::vector<AtomTriple>& angles_;
-  const std::vector<double>& target_cosines_;
-  const detail::SurfaceProjector& projector_;
-  double radius_;
-  std::vector<int> faces_;  // the surface face each atom was last projected to (the walk's start)
-  const DualOptimizeSettings& s_;
-  std::vector<double> partial_;
-  detail::ContactTerm contacts_;
-  Classes bond_classes_, angle_classes_;
-  std::vector<std::array<double, 2>> partial_sums_;
-};
 
 // The cosine of the target of every angle: the interior angle of a regular polygon of the size of the closed
 // ring the angle lies in (108 degrees in a pentagon, 120 in a hexagon, ...), 120 degrees outside closed rings.
@@ -310,7 +141,7 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
     sorted_faces[k] = faces[i];
   }
   if (extra) x[x.size() - 1] = 0;
-  DualEnergy energy(bonds, sorted_angles, sorted_targets, projector, radius, std::move(sorted_faces), settings);
+  detail::DualEnergy energy(bonds, sorted_angles, sorted_targets, projector, radius, std::move(sorted_faces), settings);
   Eigen::VectorXd g;
   r.energy_before = energy(x, g);
 
