@@ -7,32 +7,36 @@
 #include <vector>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "spatial_order.hpp"
 
 namespace carbonmesh {
 
 bool midpoint_subdivision(TriMesh& mesh) {
   mesh.garbage_collection();
-  TriMesh out;
-  const std::size_t nv = mesh.n_vertices(), ne = mesh.n_edges();
-  out.reserve(nv + ne, 2 * ne + 3 * mesh.n_faces(), 4 * mesh.n_faces());
-  for (auto v : mesh.vertices()) out.add_vertex(mesh.point(v));
-  // Vertex nv + e is the midpoint of edge e.
+  const std::size_t nv = mesh.n_vertices();
+  // Point nv + e is the midpoint of edge e.
+  std::vector<Vec3> points;
+  points.reserve(nv + mesh.n_edges());
+  for (auto v : mesh.vertices()) points.push_back(mesh.point(v));
   for (auto e : mesh.edges()) {
     const auto h = mesh.halfedge_handle(e, 0);
-    out.add_vertex(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
+    points.push_back(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
   }
-  auto corner = [&](TriMesh::HalfedgeHandle h) { return TriMesh::VertexHandle(mesh.from_vertex_handle(h).idx()); };
-  auto middle = [&](TriMesh::HalfedgeHandle h) {
-    return TriMesh::VertexHandle(static_cast<int>(nv) + mesh.edge_handle(h).idx());
-  };
+  auto middle = [&](TriMesh::HalfedgeHandle h) { return static_cast<int>(nv) + mesh.edge_handle(h).idx(); };
+  std::vector<std::array<int, 3>> faces;
+  faces.reserve(4 * mesh.n_faces());
   for (auto f : mesh.faces()) {
     const auto h0 = mesh.halfedge_handle(f), h1 = mesh.next_halfedge_handle(h0), h2 = mesh.next_halfedge_handle(h1);
-    const auto a = corner(h0), b = corner(h1), c = corner(h2);  // h0 = a->b, h1 = b->c, h2 = c->a
-    const auto ab = middle(h0), bc = middle(h1), ca = middle(h2);
-    for (const std::array<TriMesh::VertexHandle, 3>& t :
-         {std::array{a, ab, ca}, std::array{b, bc, ab}, std::array{c, ca, bc}, std::array{ab, bc, ca}})
-      if (!out.add_face(t[0], t[1], t[2]).is_valid()) return false;  // not on a manifold mesh
+    // h0 = a->b, h1 = b->c, h2 = c->a
+    const int a = mesh.from_vertex_handle(h0).idx(), b = mesh.from_vertex_handle(h1).idx(),
+              c = mesh.from_vertex_handle(h2).idx();
+    const int ab = middle(h0), bc = middle(h1), ca = middle(h2);
+    faces.insert(faces.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
   }
+  // Built in spatial memory order at once (the remesher would reorder the appended midpoints anyway).
+  TriMesh out;
+  std::vector<int> renumber;
+  if (!build_in_spatial_order(points, faces, out, renumber)) return false;  // not on a manifold mesh
   mesh = std::move(out);
   return true;
 }

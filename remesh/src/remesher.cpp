@@ -129,8 +129,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     if (usable && midpoint_subdivision(mesh)) {
       if (coarse_mesh) s.on_coarse_mesh(*coarse_mesh, 1);
       result.coarse_levels = c.coarse_levels + 1;
-      result.bisected_vertices = c.bisected_vertices;
-      spatial_order(mesh);
+      result.bisected_vertices = c.bisected_vertices;  // (the subdivision is in spatial memory order)
       projection(*projection_target, mesh, /*only_moved=*/false);
       edges = edge_stats(mesh, interval);
       spdlog::info("coarse level {} [{:.4f}, {:.4f}] converged in {} iterations, subdivided to {} vertices: {} long "

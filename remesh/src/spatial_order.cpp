@@ -10,50 +10,66 @@
 
 #include "carbonmesh/remesh/morton_order.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "spatial_order.hpp"
 
 namespace carbonmesh {
 
+bool build_in_spatial_order(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& faces,
+                            TriMesh& out, std::vector<int>& renumber) {
+  const std::vector<int> order = morton_order(points);
+  out = TriMesh();
+  out.reserve(points.size(), points.size() + faces.size(), faces.size());
+  renumber.assign(points.size(), -1);
+  for (int k : order)
+    renumber[static_cast<std::size_t>(k)] = out.add_vertex(points[static_cast<std::size_t>(k)]).idx();
+  // Faces by their smallest new vertex index, each starting at that vertex (orientation kept).
+  std::vector<std::array<int, 3>> ordered;
+  ordered.reserve(faces.size());
+  for (const auto& f : faces) {
+    std::array<int, 3> t{};
+    for (std::size_t k = 0; k < 3; ++k) t[k] = renumber[static_cast<std::size_t>(f[k])];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    ordered.push_back(t);
+  }
+  std::sort(ordered.begin(), ordered.end());
+  for (const auto& t : ordered)
+    if (!out.add_face(TriMesh::VertexHandle(t[0]), TriMesh::VertexHandle(t[1]), TriMesh::VertexHandle(t[2]))
+             .is_valid())
+      return false;
+  return true;
+}
+
 bool spatial_order(TriMesh& mesh) {
   std::vector<Vec3> points;
-  std::vector<int> handle;  // vertex index of each point
+  std::vector<int> handle;                      // vertex index of each point
+  std::vector<int> point_of(mesh.n_vertices(), -1);  // point index of each vertex
   points.reserve(mesh.n_vertices());
   handle.reserve(mesh.n_vertices());
   for (auto v : mesh.vertices()) {
     if (mesh.status(v).deleted()) continue;
+    point_of[static_cast<std::size_t>(v.idx())] = static_cast<int>(points.size());
     points.push_back(mesh.point(v));
     handle.push_back(v.idx());
   }
-  const std::vector<int> order = morton_order(points);
-  TriMesh out;
-  out.reserve(order.size(), mesh.n_edges(), mesh.n_faces());
-  std::vector<int> renumber(mesh.n_vertices(), -1);
-  for (int k : order) {
-    const int i = handle[static_cast<std::size_t>(k)];
-    renumber[static_cast<std::size_t>(i)] = out.add_vertex(mesh.point(TriMesh::VertexHandle(i))).idx();
-  }
-  // Faces by their smallest new vertex index, each starting at that vertex (orientation kept).
   std::vector<std::array<int, 3>> faces;
   faces.reserve(mesh.n_faces());
   for (auto f : mesh.faces()) {
     if (mesh.status(f).deleted()) continue;
     std::array<int, 3> t{};
     int k = 0;
-    for (auto w : mesh.fv_range(f)) t[static_cast<std::size_t>(k++)] = renumber[static_cast<std::size_t>(w.idx())];
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    for (auto w : mesh.fv_range(f)) t[static_cast<std::size_t>(k++)] = point_of[static_cast<std::size_t>(w.idx())];
     faces.push_back(t);
   }
-  std::sort(faces.begin(), faces.end());
-  for (const auto& t : faces) {
-    const auto f = out.add_face(TriMesh::VertexHandle(t[0]), TriMesh::VertexHandle(t[1]), TriMesh::VertexHandle(t[2]));
-    if (!f.is_valid()) return false;  // cannot happen on a manifold mesh; keep the old order
-  }
+  TriMesh out;
+  std::vector<int> renumber;
+  if (!build_in_spatial_order(points, faces, out, renumber)) return false;  // not on a manifold mesh: old order
   // The projection's memory of where each vertex was put (projection.cpp) moves with its vertex.
   OpenMesh::VPropHandleT<std::array<double, 4>> last_in, last_out;
   if (mesh.get_property_handle(last_in, "carbonmesh:projected")) {
     out.add_property(last_out, "carbonmesh:projected");
-    for (int i : handle)
-      out.property(last_out, TriMesh::VertexHandle(renumber[static_cast<std::size_t>(i)])) =
-          mesh.property(last_in, TriMesh::VertexHandle(i));
+    for (std::size_t k = 0; k < handle.size(); ++k)
+      out.property(last_out, TriMesh::VertexHandle(renumber[k])) =
+          mesh.property(last_in, TriMesh::VertexHandle(handle[k]));
   }
   mesh = std::move(out);
   return true;

@@ -180,7 +180,8 @@ bool spatial_order(TriMesh& mesh);
 
 // Splits every triangle into four at its edge midpoints (every new edge half an old one; old vertices keep their
 // valence, new ones have valence 6, or 4 on a border). Deleted elements are dropped and vertex properties are not
-// kept. Returns false and leaves the mesh unchanged if a face cannot be added (a non-manifold mesh).
+// kept; the result is in spatial memory order (as spatial_order leaves a mesh). Returns false and leaves the mesh
+// unchanged if a face cannot be added (a non-manifold mesh).
 bool midpoint_subdivision(TriMesh& mesh);
 
 // ---- regularize (correct_valence.cpp): valence optimisation that keeps every edge inside -------------
