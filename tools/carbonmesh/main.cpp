@@ -3,15 +3,27 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <climits>
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
+#if defined(__GLIBC__)
+  // Large structures allocate and free meshes and vectors of tens of MB over and over (mesh copies, L-BFGS
+  // vectors). glibc's defaults give blocks above its adaptive threshold back to the kernel at once, so each new one
+  // is faulted in again page by page (10^6 atoms: 610000 page faults). Blocks up to 32 MB (the largest mallopt
+  // allows) now come from the heap and the heap is not trimmed: 410000 faults, peak RSS 1.51 -> 1.65 GB.
+  mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);
+  mallopt(M_TRIM_THRESHOLD, INT_MAX);
+#endif
   carbonmesh::remove_partial_files_on_interrupt();
   auto logger = spdlog::stderr_color_mt("carbonmesh");
   spdlog::set_default_logger(logger);
