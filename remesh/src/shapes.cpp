@@ -298,16 +298,20 @@ TriMesh make_geodesic_sphere(const GeodesicSphereShape& shape) {
   double mean = 0;
   for (auto e : mesh.edges()) mean += mesh.calc_edge_length(e);
   mean /= static_cast<double>(mesh.n_edges());
+  // Each step reads the old positions only (in parallel, the same for any thread count).
   std::vector<Vec3> next(mesh.n_vertices());
+  const int n = static_cast<int>(mesh.n_vertices());
   for (int it = 0; it < kSpringIterations; ++it) {
-    for (auto v : mesh.vertices()) {
+#pragma omp parallel for schedule(static) if (n >= 20000)
+    for (int i = 0; i < n; ++i) {
+      const VH v(i);
       Vec3 force(0, 0, 0);
       for (auto w : mesh.vv_range(v)) {
         const Vec3 d = mesh.point(w) - mesh.point(v);
         const double l = d.norm();
         force += (l - mean) / l * d;
       }
-      next[static_cast<std::size_t>(v.idx())] = (mesh.point(v) + 0.3 * force).normalized() * shape.radius;
+      next[static_cast<std::size_t>(i)] = (mesh.point(v) + 0.3 * force).normalized() * shape.radius;
     }
     for (auto v : mesh.vertices()) mesh.set_point(v, next[static_cast<std::size_t>(v.idx())]);
   }
