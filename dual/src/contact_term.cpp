@@ -10,29 +10,34 @@ namespace carbonmesh::detail {
 
 constexpr std::size_t kChunk = 8192;  // atoms per parallel chunk
 
-ContactTerm::ContactTerm(std::size_t atoms, const std::vector<std::array<int, 2>>& bonds, double cutoff,
-                         double weight)
-    : atoms_(atoms), cutoff_(cutoff), weight_(weight), skin_(0.25 * cutoff), first_(atoms + 1, 0) {
+BondAdjacency bond_adjacency(std::size_t atoms, const std::vector<std::array<int, 2>>& bonds) {
+  BondAdjacency a;
+  a.first.assign(atoms + 1, 0);
   for (const auto& b : bonds)
-    ++first_[static_cast<std::size_t>(b[0]) + 1], ++first_[static_cast<std::size_t>(b[1]) + 1];
-  for (std::size_t i = 0; i < atoms; ++i) first_[i + 1] += first_[i];
-  neighbours_.resize(static_cast<std::size_t>(first_[atoms]));
-  std::vector<int> fill(first_.begin(), first_.end() - 1);
+    ++a.first[static_cast<std::size_t>(b[0]) + 1], ++a.first[static_cast<std::size_t>(b[1]) + 1];
+  for (std::size_t i = 0; i < atoms; ++i) a.first[i + 1] += a.first[i];
+  a.atom.resize(a.first[atoms]);
+  std::vector<std::uint32_t> fill(a.first.begin(), a.first.end() - 1);
   for (const auto& b : bonds) {
-    neighbours_[static_cast<std::size_t>(fill[static_cast<std::size_t>(b[0])]++)] = b[1];
-    neighbours_[static_cast<std::size_t>(fill[static_cast<std::size_t>(b[1])]++)] = b[0];
+    a.atom[fill[static_cast<std::size_t>(b[0])]++] = static_cast<std::uint32_t>(b[1]);
+    a.atom[fill[static_cast<std::size_t>(b[1])]++] = static_cast<std::uint32_t>(b[0]);
   }
+  for (std::size_t i = 0; i < atoms; ++i) std::sort(a.atom.begin() + a.first[i], a.atom.begin() + a.first[i + 1]);
+  return a;
 }
 
+bool BondAdjacency::bonded(std::uint32_t i, std::uint32_t j) const {
+  return std::binary_search(atom.begin() + first[i], atom.begin() + first[i + 1], j);
+}
+
+ContactTerm::ContactTerm(const BondAdjacency& bonds, double cutoff, double weight)
+    : atoms_(bonds.atoms()), cutoff_(cutoff), weight_(weight), skin_(0.25 * cutoff), bonds_(bonds) {}
+
 bool ContactTerm::within_two_bonds(int i, int j) const {
-  auto bonded = [&](int a, int b) {
-    for (int k = first_[static_cast<std::size_t>(a)]; k < first_[static_cast<std::size_t>(a) + 1]; ++k)
-      if (neighbours_[static_cast<std::size_t>(k)] == b) return true;
-    return false;
-  };
-  if (bonded(i, j)) return true;
-  for (int k = first_[static_cast<std::size_t>(i)]; k < first_[static_cast<std::size_t>(i) + 1]; ++k)
-    if (bonded(neighbours_[static_cast<std::size_t>(k)], j)) return true;
+  const auto a = static_cast<std::uint32_t>(i), b = static_cast<std::uint32_t>(j);
+  if (bonds_.bonded(a, b)) return true;
+  for (std::uint32_t k = bonds_.first[a]; k < bonds_.first[a + 1]; ++k)
+    if (bonds_.bonded(bonds_.atom[k], b)) return true;
   return false;
 }
 

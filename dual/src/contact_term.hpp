@@ -10,9 +10,20 @@
 // pass over the angles (dual_energy.cpp), so the list holds only the rare close pairs of a folded or crowded net
 // instead of every second neighbour, which sits at sqrt(3) b, inside the list's reach.
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace carbonmesh::detail {
+
+// The bonded neighbours of every atom: atom[first[i] .. first[i + 1]) ascending (CSR). Shared by the contact term
+// (which pairs to leave out) and the energy's per-atom pass (dual_energy.cpp: its neighbour slots).
+struct BondAdjacency {
+  std::vector<std::uint32_t> first, atom;
+  std::size_t atoms() const { return first.empty() ? 0 : first.size() - 1; }
+  bool bonded(std::uint32_t i, std::uint32_t j) const;
+};
+BondAdjacency bond_adjacency(std::size_t atoms, const std::vector<std::array<int, 2>>& bonds);
 
 // The contact term of one pair at (scaled) distance r: adds w_c (r_c - r)^2 to `energy` and returns dE/dr, 0 from
 // r_c on.
@@ -25,8 +36,9 @@ inline double contact_derivative(double cutoff, double weight, double r, double&
 
 class ContactTerm {
  public:
-  // `bonds`: the bonds, atoms 0..atoms-1 (pairs within two bonds are excluded). cutoff r_c and weight w_c as above.
-  ContactTerm(std::size_t atoms, const std::vector<std::array<int, 2>>& bonds, double cutoff, double weight);
+  // `bonds`: the bonded neighbours (pairs within two bonds are excluded; held by reference). cutoff r_c and
+  // weight w_c as above.
+  ContactTerm(const BondAdjacency& bonds, double cutoff, double weight);
 
   // Adds the term for atoms at x_i = c + s (y_i - c) (y: 3 coordinates per atom) to `gradient` (dE/dy) and
   // `gradient_scale` (dE/ds); returns its energy. Rebuilds the pair list when needed.
@@ -40,7 +52,7 @@ class ContactTerm {
 
   std::size_t atoms_;
   double cutoff_, weight_, skin_;
-  std::vector<int> first_, neighbours_;  // CSR of the bonded neighbours
+  const BondAdjacency& bonds_;
   std::vector<std::array<int, 2>> pairs_;
   std::vector<double> built_at_;  // y at the last rebuild
   double built_scale_ = 0;

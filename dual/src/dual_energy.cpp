@@ -13,33 +13,20 @@ DualEnergy::DualEnergy(const std::vector<AtomPair>& bonds, const std::vector<Ato
                        const std::vector<double>& target_cosines, const SurfaceProjector& projector, double radius,
                        std::vector<int> faces, const DualOptimizeSettings& s)
     : projector_(projector), radius_(radius), faces_(std::move(faces)), s_(s),
-      contacts_(faces_.size(), bonds, std::numbers::sqrt2 * s.bond, s.contact_weight) {
+      slots_(bond_adjacency(faces_.size(), bonds)),
+      contacts_(slots_, std::numbers::sqrt2 * s.bond, s.contact_weight) {
   const std::size_t n = faces_.size();
-  // Neighbour slots: atom c's neighbours are slot_atom_[first_slot_[c] .. first_slot_[c + 1]), ascending.
-  first_slot_.assign(n + 1, 0);
-  for (const auto& b : bonds)
-    ++first_slot_[static_cast<std::size_t>(b[0]) + 1], ++first_slot_[static_cast<std::size_t>(b[1]) + 1];
-  for (std::size_t i = 0; i < n; ++i) {
-    if (first_slot_[i + 1] > kMaxBonds)
-      throw std::invalid_argument("optimize_dual: an atom has more than " + std::to_string(kMaxBonds) + " bonds");
-    first_slot_[i + 1] += first_slot_[i];
-  }
-  slot_atom_.resize(first_slot_[n]);
-  std::vector<std::uint32_t> fill(first_slot_.begin(), first_slot_.end() - 1);
-  for (const auto& b : bonds) {
-    slot_atom_[fill[static_cast<std::size_t>(b[0])]++] = static_cast<std::uint32_t>(b[1]);
-    slot_atom_[fill[static_cast<std::size_t>(b[1])]++] = static_cast<std::uint32_t>(b[0]);
-  }
   for (std::size_t i = 0; i < n; ++i)
-    std::sort(slot_atom_.begin() + first_slot_[i], slot_atom_.begin() + first_slot_[i + 1]);
+    if (slots_.first[i + 1] - slots_.first[i] > kMaxBonds)
+      throw std::invalid_argument("optimize_dual: an atom has more than " + std::to_string(kMaxBonds) + " bonds");
   // Angles by centre (the caller sorts them so), each as its two neighbour slots of the centre.
   first_angle_.assign(n + 1, 0);
   for (const auto& t : angles) ++first_angle_[static_cast<std::size_t>(t[1]) + 1];
   for (std::size_t i = 0; i < n; ++i) first_angle_[i + 1] += first_angle_[i];
   auto slot_of = [&](int centre, int atom) {
     const auto c = static_cast<std::size_t>(centre);
-    for (std::uint32_t k = first_slot_[c]; k < first_slot_[c + 1]; ++k)
-      if (slot_atom_[k] == static_cast<std::uint32_t>(atom)) return k;
+    for (std::uint32_t k = slots_.first[c]; k < slots_.first[c + 1]; ++k)
+      if (slots_.atom[k] == static_cast<std::uint32_t>(atom)) return k;
     throw std::invalid_argument("optimize_dual: an angle's arm is not a bond");
   };
   angle_slots_.resize(angles.size());
@@ -58,20 +45,17 @@ DualEnergy::DualEnergy(const std::vector<AtomPair>& bonds, const std::vector<Ato
   for (std::size_t k = 0; k < ends.size(); ++k) {
     const auto [i, j, a] = ends[k];
     const bool repeat = k > 0 && std::get<0>(ends[k - 1]) == i && std::get<1>(ends[k - 1]) == j;
-    const auto begin = slot_atom_.begin() + first_slot_[static_cast<std::size_t>(i)];
-    const auto end = slot_atom_.begin() + first_slot_[static_cast<std::size_t>(i) + 1];
-    const bool bonded = std::find(begin, end, static_cast<std::uint32_t>(j)) != end;
-    angle_contact_[a] = !repeat && !bonded;
+    angle_contact_[a] = !repeat && !slots_.bonded(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
   }
   // The slots that name each atom, by centre ascending.
   first_gather_.assign(n + 1, 0);
-  for (std::uint32_t a : slot_atom_) ++first_gather_[a + 1];
+  for (std::uint32_t a : slots_.atom) ++first_gather_[a + 1];
   for (std::size_t i = 0; i < n; ++i) first_gather_[i + 1] += first_gather_[i];
-  gather_.resize(slot_atom_.size());
+  gather_.resize(slots_.atom.size());
   std::vector<std::uint32_t> at(first_gather_.begin(), first_gather_.end() - 1);
   for (std::size_t c = 0; c < n; ++c)
-    for (std::uint32_t k = first_slot_[c]; k < first_slot_[c + 1]; ++k) gather_[at[slot_atom_[k]]++] = k;
-  slot_gradient_.assign(3 * slot_atom_.size(), 0.0);
+    for (std::uint32_t k = slots_.first[c]; k < slots_.first[c + 1]; ++k) gather_[at[slots_.atom[k]]++] = k;
+  slot_gradient_.assign(3 * slots_.atom.size(), 0.0);
 }
 
 double DualEnergy::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
@@ -98,13 +82,13 @@ double DualEnergy::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
       double ce = 0, cg = 0, cd = 0;
       const std::size_t end = std::min(n, static_cast<std::size_t>(chunk + 1) * kChunk);
       for (std::size_t c = static_cast<std::size_t>(chunk) * kChunk; c < end; ++c) {
-        const std::uint32_t first = first_slot_[c], degree = first_slot_[c + 1] - first;
+        const std::uint32_t first = slots_.first[c], degree = slots_.first[c + 1] - first;
         const Eigen::Map<const Eigen::Vector3d> xc(px + 3 * c);
         std::array<Eigen::Vector3d, kMaxBonds> arm, push;  // x_j - x_c, and the gradient on neighbour j
         std::array<double, kMaxBonds> arm2;
         Eigen::Vector3d gc = Eigen::Vector3d::Zero();
         for (std::uint32_t k = 0; k < degree; ++k) {
-          const std::uint32_t j = slot_atom_[first + k];
+          const std::uint32_t j = slots_.atom[first + k];
           arm[k] = Eigen::Map<const Eigen::Vector3d>(px + 3 * j) - xc;
           arm2[k] = arm[k].squaredNorm();
           push[k].setZero();

@@ -51,8 +51,8 @@ class DualEnergy {
   double radius_;
   std::vector<int> faces_;  // the surface face each atom was last projected to (the walk's start)
   const DualOptimizeSettings& s_;
+  BondAdjacency slots_;  // neighbour slots of each atom: slot k of atom c names atom slots_.atom[k]
   ContactTerm contacts_;
-  std::vector<std::uint32_t> first_slot_, slot_atom_;      // neighbour slots of each atom, neighbours ascending
   std::vector<std::uint32_t> first_angle_;                 // angles by centre
   std::vector<std::array<std::uint32_t, 2>> angle_slots_;  // an angle's two arms as slots of its centre
   std::vector<std::uint8_t> angle_contact_;                // 1: the angle adds the contact term of its end pair

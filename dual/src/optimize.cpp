@@ -11,7 +11,6 @@
 #include <numbers>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
-#include <string>
 
 #include "carbonmesh/remesh/morton_order.hpp"
 #include "dual_energy.hpp"
