@@ -14,7 +14,7 @@ DualEnergy::DualEnergy(const std::vector<AtomPair>& bonds, const std::vector<Ato
                        std::vector<int> faces, const DualOptimizeSettings& s)
     : projector_(projector), radius_(radius), faces_(std::move(faces)), s_(s),
       slots_(bond_adjacency(faces_.size(), bonds)),
-      contacts_(slots_, std::numbers::sqrt2 * s.bond, s.contact_weight) {
+      contacts_(slots_, std::numbers::sqrt2 * s.bond, s.contact_weight), target_cosines_(target_cosines) {
   const std::size_t n = faces_.size();
   for (std::size_t i = 0; i < n; ++i)
     if (slots_.first[i + 1] - slots_.first[i] > kMaxBonds)
@@ -35,7 +35,6 @@ DualEnergy::DualEnergy(const std::vector<AtomPair>& bonds, const std::vector<Ato
     if (a > 0 && angles[a - 1][1] > t[1]) throw std::invalid_argument("optimize_dual: angles not sorted by centre");
     angle_slots_[a] = {slot_of(t[1], t[0]), slot_of(t[1], t[2])};
   }
-  target_cosines_ = target_cosines;
   // The pair at an angle's ends gets the contact term from the first angle it ends (in a 4-ring two angles
   // share it), and none if it is bonded (a 3-ring).
   angle_contact_.assign(angles.size(), 0);

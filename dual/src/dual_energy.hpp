@@ -28,8 +28,8 @@ namespace carbonmesh::detail {
 // chunks in order: the result does not depend on the thread count.
 class DualEnergy {
  public:
-  // `angles` sorted by centre atom; target_cosines[a] the cosine angle a is pulled to; faces[i] the surface face
-  // atom i starts its closest-point walk from.
+  // `angles` sorted by centre atom; target_cosines[a] the cosine angle a is pulled to (held by reference);
+  // faces[i] the surface face atom i starts its closest-point walk from.
   DualEnergy(const std::vector<AtomPair>& bonds, const std::vector<AtomTriple>& angles,
              const std::vector<double>& target_cosines, const SurfaceProjector& projector, double radius,
              std::vector<int> faces, const DualOptimizeSettings& settings);
@@ -56,7 +56,7 @@ class DualEnergy {
   std::vector<std::uint32_t> first_angle_;                 // angles by centre
   std::vector<std::array<std::uint32_t, 2>> angle_slots_;  // an angle's two arms as slots of its centre
   std::vector<std::uint8_t> angle_contact_;                // 1: the angle adds the contact term of its end pair
-  std::vector<double> target_cosines_;
+  const std::vector<double>& target_cosines_;  // the caller's, by angle
   std::vector<std::uint32_t> first_gather_, gather_;       // the slots that name each atom
   std::vector<double> slot_gradient_;                      // 3 per slot: the gradient on the slot's atom
   std::vector<std::array<double, 3>> partial_sums_;
