@@ -63,12 +63,12 @@ TEST(Valence, SubdividedIcosphereIsRegularBut12) {
 }
 
 // Geodesic spheres of class I (frequency f: T = f^2) and II (sqrt(3) step: T = 3 f^2): 20 T faces, 10 T + 2
-// vertices, 12 of valence 5 and the rest 6, every vertex on the sphere, edges within a spread of 1.3 at any
-// frequency (the central projection of the flat lattice gave 1.38 at frequency 45, 1.40 at 30 with sqrt(3)), so
-// that build's interval (spread 1.5) holds the built-in sphere unchanged at any size.
+// vertices, 12 of valence 5 and the rest 6, every vertex on the sphere, edges within a spread of 1.4 at any
+// frequency (1.34 at 129 with sqrt(3); the central projection of the flat lattice gave 1.44 at 40 with sqrt(3) and
+// 1.53 at 129), so that build's interval (spread 1.5) holds the built-in sphere unchanged at any size.
 TEST(GeodesicSphere, HasTwentyTFacesAndTwelveValenceFiveVertices) {
   const std::vector<std::pair<int, bool>> shapes = {{1, false}, {1, true}, {3, true}, {7, false},
-                                                    {12, true}, {45, false}, {30, true}};
+                                                    {12, true}, {45, false}, {40, true}};
   for (const auto& [f, sqrt3] : shapes) {
     const TriMesh mesh = make_geodesic_sphere({5.0, f, sqrt3});
     const std::size_t t = static_cast<std::size_t>(f * f * (sqrt3 ? 3 : 1));
@@ -84,7 +84,7 @@ TEST(GeodesicSphere, HasTwentyTFacesAndTwelveValenceFiveVertices) {
     }
     for (auto vh : mesh.vertices()) EXPECT_NEAR(mesh.point(vh).norm(), 5.0, 1e-9);
     const EdgeStats e = edge_stats(mesh);
-    EXPECT_LT(e.max / e.min, 1.3) << f << sqrt3;
+    EXPECT_LT(e.max / e.min, 1.4) << f << sqrt3;
   }
 }
 
