@@ -19,6 +19,7 @@ namespace {
 using VH = TriMesh::VertexHandle;
 
 using geometry::kMaxNormalTurnCos;
+constexpr double kFoldCos = -0.5;  // neighbouring faces more than 120 degrees apart are folded
 using geometry::kMinAngle;
 constexpr double kHingeWeight = 1000.0;  // weight of the interval hinge relative to Eq 4.7
 constexpr double kHingeMargin = 0.05;    // the hinge starts this share of the interval width inside it
@@ -263,7 +264,17 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     }
     if (!improved) break;
   }
-  // Apply, halving the displacement while some face folds or degenerates.
+  // Apply, halving the displacement while some face folds or degenerates: a face turns by more than
+  // acos(kMaxNormalTurnCos), or two neighbouring faces fold (their normals end more than 120 degrees apart).
+  // Each face may turn within the limit and two neighbours still fold when they turn opposite ways (fertility at
+  // 250000 atoms with two coarse levels: 4 edges folded by 170-178 degrees). Edges folded already (camelhead's
+  // mouth) are left to the other checks.
+  auto moved_normal = [&](TriMesh::FaceHandle f) {
+    Vec3 q[3];
+    int c = 0;
+    for (auto w : mesh.fv_range(f)) q[c++] = point_of(x, var_index(w), w);
+    return geometry::triangle_normal(q[0], q[1], q[2]);
+  };
   for (int attempt = 0; attempt < 5; ++attempt, x *= 0.5) {
     bool ok = true;
     for (int i = 0; i < nv && ok; ++i) {
@@ -272,10 +283,14 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
         int c = 0;
         for (auto w : mesh.fv_range(f)) q[c++] = point_of(x, var_index(w), w);
         const Vec3 before = geometry::face_normal(mesh, f), after = geometry::triangle_normal(q[0], q[1], q[2]);
-        if (OpenMesh::dot(before, after) < kMaxNormalTurnCos || geometry::min_angle(q[0], q[1], q[2]) < kMinAngle) {
-          ok = false;
-          break;
+        ok = OpenMesh::dot(before, after) >= kMaxNormalTurnCos && geometry::min_angle(q[0], q[1], q[2]) >= kMinAngle;
+        for (auto h : mesh.fh_range(f)) {
+          const auto g = mesh.opposite_face_handle(h);
+          if (!ok || !g.is_valid()) continue;
+          const double fold_before = OpenMesh::dot(before, geometry::face_normal(mesh, g));
+          ok = fold_before < kFoldCos || OpenMesh::dot(after, moved_normal(g)) >= kFoldCos;
         }
+        if (!ok) break;
       }
     }
     if (ok) {
