@@ -1,5 +1,6 @@
 // The dual of triangle meshes (atoms, bonds, rings, maps) and the dual optimisation.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -293,4 +294,38 @@ TEST(CoarseStart, OptimisesTheCoarseDualAtTwiceTheBond) {
   double largest = 0;
   for (std::size_t i = 0; i < after.size(); ++i) largest = std::max(largest, (after[i] - before[i]).norm());
   EXPECT_NEAR(largest, r.transfer.max_shift, 1e-12);
+}
+
+// Several levels: the coarsest (level 2, bond 4 b) is optimised first, its displacements move the level-1 atoms,
+// which are optimised from there at bond 2 b, and the level-1 displacements (from its centroids) move the fine
+// atoms. Levels may come in any order; one level gives what the one-level overload gives.
+TEST(CoarseStart, OptimisesTheLevelsCoarsestFirst) {
+  const double b = 1.42;
+  const TriMesh surface = fullerene_surface(4, b);
+  const double radius = surface.point(*surface.vertices().begin()).norm();
+  std::vector<CoarseLevel> levels{{1, make_icosphere({radius, 3})}, {2, make_icosphere({radius, 2})}};
+  Dual fine = build_dual(surface);
+  DualOptimizeSettings settings;
+  settings.bond = b;
+  const std::vector<CoarseStartResult> r = coarse_start(fine, levels, surface, settings);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].level, 2);
+  EXPECT_EQ(r[1].level, 1);
+  EXPECT_EQ(r[0].coarse_atoms, levels[1].mesh.n_faces());
+  EXPECT_EQ(r[1].coarse_atoms, levels[0].mesh.n_faces());
+  EXPECT_NEAR(r[0].coarse.bonds_after.mean, 4 * b, 0.02 * 4 * b);
+  EXPECT_NEAR(r[1].coarse.bonds_after.mean, 2 * b, 0.02 * 2 * b);
+  EXPECT_EQ(r[0].transfer.atoms, levels[0].mesh.n_faces());  // level 2 moved the level-1 atoms
+  EXPECT_GT(r[0].transfer.max_shift, 0.0);
+  EXPECT_EQ(r[1].transfer.atoms, fine.atoms());
+  const nlohmann::json j = to_json(r);
+  EXPECT_EQ(j["level"], 1);
+  EXPECT_EQ(j["levels"].size(), 2u);
+
+  Dual one = build_dual(surface), overload = build_dual(surface);
+  coarse_start(one, std::vector<CoarseLevel>{levels[0]}, surface, settings);
+  coarse_start(overload, levels[0].mesh, surface, settings);
+  EXPECT_EQ(one.positions(), overload.positions());
+  levels.push_back({1, make_icosphere({radius, 1})});
+  EXPECT_THROW(coarse_start(one, levels, surface, settings), std::invalid_argument);
 }
