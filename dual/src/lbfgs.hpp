@@ -23,6 +23,7 @@ struct LbfgsResult {
   int iterations = 0;
   int evaluations = 0;  // calls of f
   bool converged = false;
+  double initial_energy = 0;  // f at the start
   double energy = 0;
   double gradient_max = 0;
 };
@@ -78,6 +79,7 @@ LbfgsResult minimize_lbfgs(Eigen::VectorXd& x, Function&& f, const LbfgsSettings
   Eigen::VectorXd g(n), g_new(n), x_new(n), d(n), s_new(n), y_new(n);
   double e = f(x, g);
   result.evaluations = 1;
+  result.initial_energy = e;
   auto max_abs = [](const Eigen::VectorXd& a) {
     return pass(a.size(), [&](Index i, Index k, Sums& s) {
              if (k > 0) s.max = a.segment(i, k).cwiseAbs().maxCoeff();

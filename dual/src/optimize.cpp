@@ -141,8 +141,6 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   }
   if (extra) x[x.size() - 1] = 0;
   detail::DualEnergy energy(bonds, sorted_angles, sorted_targets, projector, radius, std::move(sorted_faces), settings);
-  Eigen::VectorXd g;
-  r.energy_before = energy(x, g);
 
   detail::LbfgsSettings ls;
   ls.max_iterations = settings.max_iterations;
@@ -151,6 +149,7 @@ DualOptimizeResult optimize_dual(Dual& dual, const TriMesh& surface, const DualO
   ls.max_step = 0.1 * settings.bond;
   ls.energy_tolerance = settings.energy_tolerance;
   const detail::LbfgsResult lr = detail::minimize_lbfgs(x, energy, ls);
+  r.energy_before = lr.initial_energy;
   r.iterations = lr.iterations;
   r.evaluations = lr.evaluations;
   r.converged = lr.converged;
