@@ -55,6 +55,37 @@ TEST(MidpointSubdivision, HalvesEveryEdgeAndKeepsTheSurfaceType) {
   }
 }
 
+// Springs after a subdivision: an icosphere stretched to an ellipsoid and then subdivided keeps the coarse
+// triangles' shapes in each patch of four; springs of the mean edge even the edges out, a border (one face
+// removed) stays where it was, and the result is the same for the same input.
+TEST(SpringRelaxation, EvensOutTheEdgesOfASubdividedMeshAndKeepsItsBorder) {
+  TriMesh mesh = make_icosphere({10.0, 2});
+  for (auto v : mesh.vertices()) {
+    Vec3 p = mesh.point(v);
+    p[0] *= 1.8;
+    mesh.set_point(v, p);
+  }
+  mesh.delete_face(*mesh.faces().begin(), true);
+  mesh.garbage_collection();
+  ASSERT_TRUE(midpoint_subdivision(mesh));
+  const TriMesh before = mesh;
+  const EdgeStats edges = edge_stats(mesh);
+  spring_relaxation(mesh, edges.mean, 10);
+  const EdgeStats after = edge_stats(mesh);
+  EXPECT_LT(after.std, 0.95 * edges.std);
+  EXPECT_LT(after.max / after.min, edges.max / edges.min);
+  std::size_t border = 0;
+  for (auto w : mesh.vertices())
+    if (mesh.is_boundary(w)) {
+      ++border;
+      EXPECT_EQ(mesh.point(w), before.point(w));
+    }
+  EXPECT_GT(border, 0u);
+  TriMesh again = before;
+  spring_relaxation(again, edges.mean, 10);
+  for (auto w : mesh.vertices()) EXPECT_EQ(mesh.point(w), again.point(w));
+}
+
 // A torus of mean edge 1.5 remeshed into [0.6, 0.9] with one coarse level: the coarse level converges at
 // [1.2, 1.8], the subdivided mesh is finished at [0.6, 0.9] with every edge inside, the genus kept, and more
 // regular vertices than the direct remesh (the subdivision adds only valence-6 vertices).

@@ -67,7 +67,16 @@ class StageClock {
 // The largest structure `build` makes (documented in README and docs/reliability.md): 1e8 atoms is about
 // 1e8 primal triangles, far beyond what the remesher and LAMMPS handle on one machine.
 constexpr double kMaxAtoms = 1e8;
-constexpr double kCoarseAtoms = 50000;  // the default coarse level from this structure size on (see run_build)
+constexpr double kCoarseAtoms = 50000;  // a coarse level for each factor 4 from this structure size on (run_build)
+constexpr int kMaxCoarseLevels = 4;
+
+// The default coarse levels: one per factor 4 from kCoarseAtoms on, so that the coarsest level keeps at least
+// kCoarseAtoms / 4 atoms: 1 from 50000 atoms, 2 from 200000, 3 from 800000.
+int default_coarse_levels(double atoms) {
+  int levels = 0;
+  while (levels < kMaxCoarseLevels && atoms >= kCoarseAtoms) ++levels, atoms /= 4;
+  return levels;
+}
 
 // Option values CLI11 lets through (0, negative, nan, inf) are refused before any work, one line, exit 2.
 void check_options(const BuildOptions& o) {
@@ -163,15 +172,15 @@ int run_build(BuildOptions& o) {
   o.remesh.fit_surface = false;
   o.remesh.snap_features = false;  // likewise, and its distance trees over the whole mesh cost most at 1M atoms
   o.remesh.emax = scaled.emax;
-  // One coarse level for large structures: remeshed at twice the interval, every edge then halved, and the dual
-  // optimisation started from the optimised coarse dual. Bunny, fertility and a torus at 24000-80000 atoms: a
-  // REBO2 energy 34-49 meV/atom lower after minimisation than the direct remesh, with a quarter of the 5-7 pairs
-  // from the coarse level; fertility at 10^6 atoms in a third of the time. The coarse level has a quarter of the
-  // triangles: at 20000 atoms neither bunny's nor fertility's converged (ears, handles) and the fallback to the
-  // direct remesh only cost time, so the default starts at kCoarseAtoms. More levels (--coarse-levels) leave far
-  // fewer 5-7 pairs but more strained atoms: fertility at 10^6 atoms with 3 levels, rings 5:505 7:541 instead of
-  // 5:5138 7:5174, 1.50% strained atoms instead of 0.94%, bonds 1.335..1.517 A (docs/algorithm.md).
-  o.remesh.coarse_levels = o.coarse_levels.value_or(scaled.expected_atoms >= kCoarseAtoms ? 1 : 0);
+  // Coarse levels for large structures: remeshed at 2^k times the interval, every edge then halved k times (springs
+  // evening out the triangles after each halving), and the dual optimisation started from the optimised coarse
+  // duals, coarsest first. One level (bunny, fertility and a torus at 24000-80000 atoms): a REBO2 energy 34-49
+  // meV/atom lower after minimisation than the direct remesh, with a quarter of the 5-7 pairs. Fertility at 10^6
+  // atoms with three levels against one: 5:754 7:790 rings instead of 5:5138 7:5174, 0.50% strained atoms instead
+  // of 0.94%, 46.7 s end to end. A level has a quarter of the triangles of the next finer one: at 20000 atoms
+  // neither bunny's nor fertility's level 1 converged (ears, handles) and the fallback to the direct remesh only
+  // cost time, so the coarsest level keeps kCoarseAtoms / 4 atoms or more (docs/algorithm.md).
+  o.remesh.coarse_levels = o.coarse_levels.value_or(default_coarse_levels(scaled.expected_atoms));
   o.remesh.on_iteration = [](const IterationLog& l) {
     spdlog::info("remesh {}iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  {:.2f}s{}",
                  l.level > 0 ? fmt::format("level {} ", l.level) : "", l.iteration, l.long_edges, l.short_edges,
@@ -343,7 +352,8 @@ void add_build_command(CLI::App& app, Action& action) {
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
   cmd->add_option("--coarse-levels", opt->coarse_levels,
                   "remesh: remesh at 2^k times the interval first, then halve every edge k times (default: 1 from "
-                  "50000 atoms on, else 0; the dual optimisation starts from every level, coarsest first)")
+                  "50000 atoms on, 2 from 200000, 3 from 800000, else 0; the dual optimisation starts from every "
+                  "level, coarsest first)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--optimize-iterations", opt->optimize.max_iterations, "dual optimisation: L-BFGS iterations (0: off)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);

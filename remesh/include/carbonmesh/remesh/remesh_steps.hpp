@@ -184,6 +184,15 @@ bool spatial_order(TriMesh& mesh);
 // unchanged if a face cannot be added (a non-manifold mesh).
 bool midpoint_subdivision(TriMesh& mesh);
 
+// ---- spring_relaxation.cpp: after a midpoint subdivision ----------------------------------------------------
+
+// `steps` Jacobi steps of springs of rest length `target` on the edges, each interior vertex moved in its tangent
+// plane by half the mean spring force of its ring (border vertices stay). A midpoint subdivision turns each
+// triangle into four similar ones, so a flat coarse triangle leaves a patch of sheared ones, which a Laplacian
+// low-pass filter keeps (an affine image of a regular patch is its fixed point) and springs even out. Deterministic
+// for any thread count. Project onto the surface afterwards.
+void spring_relaxation(TriMesh& mesh, double target, int steps);
+
 // ---- regularize (correct_valence.cpp): valence optimisation that keeps every edge inside -------------
 
 // After convergence: flips with J_mp > 0 (Eq 4.3) whose new diagonal may be outside [emin, emax] are tried
