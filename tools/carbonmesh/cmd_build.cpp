@@ -177,7 +177,7 @@ int run_build(BuildOptions& o) {
   // duals, coarsest first. One level (bunny, fertility and a torus at 24000-80000 atoms): a REBO2 energy 34-49
   // meV/atom lower after minimisation than the direct remesh, with a quarter of the 5-7 pairs. Fertility at 10^6
   // atoms with three levels against one: 5:754 7:790 rings instead of 5:5138 7:5174, 0.50% strained atoms instead
-  // of 0.94%, 46.7 s end to end. A level has a quarter of the triangles of the next finer one: at 20000 atoms
+  // of 0.94%, 46.7-57.8 s end to end. A level has a quarter of the triangles of the next finer one: at 20000 atoms
   // neither bunny's nor fertility's level 1 converged (ears, handles) and the fallback to the direct remesh only
   // cost time, so the coarsest level keeps kCoarseAtoms / 4 atoms or more (docs/algorithm.md).
   o.remesh.coarse_levels = o.coarse_levels.value_or(default_coarse_levels(scaled.expected_atoms));
