@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -103,11 +104,11 @@ std::vector<CoarseStartResult> coarse_start(Dual& fine, const std::vector<Coarse
   std::vector<Vec3> from, to;  // the previous (coarser) level's centroids and where its atoms ended
   for (const CoarseLevel* l : order) {
     Dual coarse = build_dual(l->mesh);
-    const std::vector<Vec3> centroids = coarse.positions();
+    std::vector<Vec3> centroids = coarse.positions();
     if (!results.empty()) results.back().transfer = transfer_displacements(coarse, from, to);
     CoarseStartResult r;
     to = optimise_level(coarse, l->level, surface, settings, r);
-    from = centroids;
+    from = std::move(centroids);
     results.push_back(r);
   }
   if (!results.empty()) results.back().transfer = transfer_displacements(fine, from, to);

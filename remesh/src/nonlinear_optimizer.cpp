@@ -269,10 +269,13 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   // Each face may turn within the limit and two neighbours still fold when they turn opposite ways (fertility at
   // 250000 atoms with two coarse levels: 4 edges folded by 170-178 degrees). Edges folded already (camelhead's
   // mouth) are left to the other checks.
-  auto moved_normal = [&](TriMesh::FaceHandle f) {
-    Vec3 q[3];
+  auto moved_corners = [&](TriMesh::FaceHandle f, Vec3 (&q)[3]) {
     int c = 0;
     for (auto w : mesh.fv_range(f)) q[c++] = point_of(x, var_index(w), w);
+  };
+  auto moved_normal = [&](TriMesh::FaceHandle f) {
+    Vec3 q[3];
+    moved_corners(f, q);
     return geometry::triangle_normal(q[0], q[1], q[2]);
   };
   for (int attempt = 0; attempt < 5; ++attempt, x *= 0.5) {
@@ -280,8 +283,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     for (int i = 0; i < nv && ok; ++i) {
       for (auto f : mesh.vf_range(variables[static_cast<std::size_t>(i)])) {
         Vec3 q[3];
-        int c = 0;
-        for (auto w : mesh.fv_range(f)) q[c++] = point_of(x, var_index(w), w);
+        moved_corners(f, q);
         const Vec3 before = geometry::face_normal(mesh, f), after = geometry::triangle_normal(q[0], q[1], q[2]);
         ok = OpenMesh::dot(before, after) >= kMaxNormalTurnCos && geometry::min_angle(q[0], q[1], q[2]) >= kMinAngle;
         for (auto h : mesh.fh_range(f)) {
