@@ -23,6 +23,7 @@ constexpr double kFoldCos = -0.5;  // neighbouring faces more than 120 degrees a
 using geometry::kMinAngle;
 constexpr double kHingeWeight = 1000.0;  // weight of the interval hinge relative to Eq 4.7
 constexpr double kHingeMargin = 0.05;    // the hinge starts this share of the interval width inside it
+constexpr int kDenseUnknowns = 48;       // regions with at most this many unknowns are solved with a dense LDL^T
 
 bool troubling(const TriMesh& mesh, TriMesh::EdgeHandle e, double emin, double emax) {
   const double l = geometry::edge_length(mesh, e);
@@ -111,8 +112,8 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   };
   // Residual edges: every edge at a variable vertex, once.
   struct Term {
-    int a, b;  // variable indices (b may be -1)
-    VH va, vb;
+    int a, b;     // variable indices (b: -1 for a fixed end)
+    Vec3 fixed;   // the fixed end's position (b = -1)
     double weight;  // outside_weight for an edge outside [emin, emax] at the start, else 1
   };
   std::vector<Term> terms;
@@ -122,7 +123,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       const int j = var_index(w);
       if (j >= 0 && j < i) continue;  // counted from the other end
       const double l = (mesh.point(v) - mesh.point(w)).norm();
-      terms.push_back({i, j, v, w, l < emin || l > emax ? outside_weight : 1.0});
+      terms.push_back({i, j, mesh.point(w), l < emin || l > emax ? outside_weight : 1.0});
     }
   }
   std::vector<Vec3> base(static_cast<std::size_t>(nv)), t1(static_cast<std::size_t>(nv)), t2(static_cast<std::size_t>(nv));
@@ -150,6 +151,14 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     if (curve_of[s] >= 0) return curves[static_cast<std::size_t>(curve_of[s])].at(x[2 * i]);
     return base[s] + x[2 * i] * t1[s] + x[2 * i + 1] * t2[s];
   };
+  // The positions of every variable at x, once per evaluation (each is an end of about six terms).
+  auto positions = [&](const Eigen::VectorXd& x, std::vector<Vec3>& out) {
+    out.resize(static_cast<std::size_t>(nv));
+    for (int i = 0; i < nv; ++i) out[static_cast<std::size_t>(i)] = position(x, i);
+  };
+  auto end_b = [&](const std::vector<Vec3>& at, const Term& t) {
+    return t.b >= 0 ? at[static_cast<std::size_t>(t.b)] : t.fixed;
+  };
   // A border parameter outside the middle halves of its border edges is not allowed.
   auto admissible = [&](const Eigen::VectorXd& x) {
     for (int i = 0; i < nv; ++i) {
@@ -165,10 +174,10 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   const double margin = kHingeMargin * (emax - emin);
   const double lo2 = (emin + margin) * (emin + margin), hi2 = (emax - margin) * (emax - margin);
   auto hinge = [&](double l2) { return l2 < lo2 ? l2 - lo2 : (l2 > hi2 ? l2 - hi2 : 0.0); };
-  auto energy = [&](const Eigen::VectorXd& x) {
+  auto energy = [&](const std::vector<Vec3>& at) {
     double e = 0;
     for (const Term& t : terms) {
-      const double l2 = (point_of(x, t.a, t.va) - point_of(x, t.b, t.vb)).sqrnorm();
+      const double l2 = (at[static_cast<std::size_t>(t.a)] - end_b(at, t)).sqrnorm();
       const double r = l2 - m2, h = hinge(l2);
       e += t.weight * r * r + kHingeWeight * h * h;
     }
@@ -176,49 +185,62 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   };
   const int dim = 2 * nv;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(dim);
-  double current = energy(x);
+  std::vector<Vec3> at, trial_at;
+  positions(x, at);
+  double current = energy(at);
   double mu = 1e-3;
-  // J^T J is sparse (2x2 blocks of the variables an edge joins): its pattern is built once, each term keeps
-  // pointers to its entries, and each damped system is solved with a sparse LDL^T (analysed once).
-  std::vector<Eigen::Triplet<double>> pattern;
-  for (int i = 0; i < dim; ++i) pattern.emplace_back(i, i, 0.0);
   auto term_indices = [&](const Term& t, int idx[4]) {
     int c = 0;
     idx[c++] = 2 * t.a, idx[c++] = 2 * t.a + 1;
     if (t.b >= 0) idx[c++] = 2 * t.b, idx[c++] = 2 * t.b + 1;
     return c;
   };
-  for (const Term& t : terms) {
-    int idx[4];
-    const int c = term_indices(t, idx);
-    for (int p = 0; p < c; ++p)
-      for (int q = 0; q < c; ++q) pattern.emplace_back(idx[p], idx[q], 0.0);
-  }
-  Eigen::SparseMatrix<double> jtj(dim, dim);
-  jtj.setFromTriplets(pattern.begin(), pattern.end());
-  jtj.makeCompressed();
-  std::vector<double*> entry(16 * terms.size());
-  for (std::size_t k = 0; k < terms.size(); ++k) {
-    int idx[4];
-    const int c = term_indices(terms[k], idx);
-    for (int p = 0; p < c; ++p)
-      for (int q = 0; q < c; ++q) entry[16 * k + static_cast<std::size_t>(4 * p + q)] = &jtj.coeffRef(idx[p], idx[q]);
-  }
-  std::vector<double*> diagonal(static_cast<std::size_t>(dim));
-  for (int i = 0; i < dim; ++i) diagonal[static_cast<std::size_t>(i)] = &jtj.coeffRef(i, i);
-  Eigen::SparseMatrix<double> h = jtj;
+  // J^T J is sparse (2x2 blocks of the variables an edge joins). A small region (the usual kn-star: about 24
+  // unknowns) is solved dense; a large one keeps its pattern once, each term with pointers to its entries,
+  // and a sparse LDL^T analysed once.
+  const bool dense = dim <= kDenseUnknowns;
+  Eigen::MatrixXd jtj_dense, h_dense;
+  Eigen::LLT<Eigen::MatrixXd> llt_dense;
+  Eigen::SparseMatrix<double> jtj, h;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-  ldlt.analyzePattern(h);
-  Eigen::VectorXd jtr(dim);
+  std::vector<double*> entry, diagonal;
+  if (dense) {
+    jtj_dense.resize(dim, dim);
+  } else {
+    std::vector<Eigen::Triplet<double>> pattern;
+    for (int i = 0; i < dim; ++i) pattern.emplace_back(i, i, 0.0);
+    for (const Term& t : terms) {
+      int idx[4];
+      const int c = term_indices(t, idx);
+      for (int p = 0; p < c; ++p)
+        for (int q = 0; q < c; ++q) pattern.emplace_back(idx[p], idx[q], 0.0);
+    }
+    jtj.resize(dim, dim);
+    jtj.setFromTriplets(pattern.begin(), pattern.end());
+    jtj.makeCompressed();
+    entry.resize(16 * terms.size());
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      int idx[4];
+      const int c = term_indices(terms[k], idx);
+      for (int p = 0; p < c; ++p)
+        for (int q = 0; q < c; ++q) entry[16 * k + static_cast<std::size_t>(4 * p + q)] = &jtj.coeffRef(idx[p], idx[q]);
+    }
+    diagonal.resize(static_cast<std::size_t>(dim));
+    for (int i = 0; i < dim; ++i) diagonal[static_cast<std::size_t>(i)] = &jtj.coeffRef(i, i);
+    h = jtj;
+    ldlt.analyzePattern(h);
+  }
+  Eigen::VectorXd jtr(dim), step(dim);
   for (int it = 0; it < 20 && current > 0; ++it) {
-    std::fill(jtj.valuePtr(), jtj.valuePtr() + jtj.nonZeros(), 0.0);
+    if (dense) jtj_dense.setZero();
+    else std::fill(jtj.valuePtr(), jtj.valuePtr() + jtj.nonZeros(), 0.0);
     jtr.setZero();
     for (int i = 0; i < nv; ++i)
       if (const int c = curve_of[static_cast<std::size_t>(i)]; c >= 0)
         t1[static_cast<std::size_t>(i)] = curves[static_cast<std::size_t>(c)].derivative(x[2 * i]);
     for (std::size_t k = 0; k < terms.size(); ++k) {
       const Term& t = terms[k];
-      const Vec3 d = point_of(x, t.a, t.va) - point_of(x, t.b, t.vb);
+      const Vec3 d = at[static_cast<std::size_t>(t.a)] - end_b(at, t);
       const double l2 = d.sqrnorm();
       const double r = l2 - m2, hr = hinge(l2);
       const double wj = t.weight + (hr != 0 ? kHingeWeight : 0.0);  // J^T J weight of this edge
@@ -236,24 +258,41 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       }
       for (int p = 0; p < c; ++p) {
         jtr[idx[p]] += wr * g[p];
-        for (int q = 0; q < c; ++q) *entry[16 * k + static_cast<std::size_t>(4 * p + q)] += wj * g[p] * g[q];
+        if (dense)
+          for (int q = 0; q < c; ++q) jtj_dense(idx[p], idx[q]) += wj * g[p] * g[q];
+        else
+          for (int q = 0; q < c; ++q) *entry[16 * k + static_cast<std::size_t>(4 * p + q)] += wj * g[p] * g[q];
       }
     }
     bool improved = false;
     for (int tries = 0; tries < 8 && !improved; ++tries) {
-      std::copy(jtj.valuePtr(), jtj.valuePtr() + jtj.nonZeros(), h.valuePtr());
-      for (int i = 0; i < dim; ++i) {
-        const double jj = *diagonal[static_cast<std::size_t>(i)];
-        h.valuePtr()[diagonal[static_cast<std::size_t>(i)] - jtj.valuePtr()] += mu * (jj + 1e-12 * (1 + m2));
+      // The damped system: J^T J + mu (diag(J^T J) + a tiny floor).
+      if (dense) {
+        h_dense = jtj_dense;
+        for (int i = 0; i < dim; ++i) h_dense(i, i) += mu * (jtj_dense(i, i) + 1e-12 * (1 + m2));
+        llt_dense.compute(h_dense);  // positive definite: the damping adds mu times a positive floor
+        if (llt_dense.info() != Eigen::Success) break;
+        step = -llt_dense.solve(jtr);
+      } else {
+        std::copy(jtj.valuePtr(), jtj.valuePtr() + jtj.nonZeros(), h.valuePtr());
+        for (int i = 0; i < dim; ++i) {
+          const double jj = *diagonal[static_cast<std::size_t>(i)];
+          h.valuePtr()[diagonal[static_cast<std::size_t>(i)] - jtj.valuePtr()] += mu * (jj + 1e-12 * (1 + m2));
+        }
+        ldlt.factorize(h);
+        step = -ldlt.solve(jtr);
       }
-      ldlt.factorize(h);
-      const Eigen::VectorXd step = -ldlt.solve(jtr);
       if (!step.allFinite()) break;
       const Eigen::VectorXd trial = x + step;
-      const double e = admissible(trial) ? energy(trial) : std::numeric_limits<double>::infinity();
+      double e = std::numeric_limits<double>::infinity();
+      if (admissible(trial)) {
+        positions(trial, trial_at);
+        e = energy(trial_at);
+      }
       if (e < current) {
         const double gain = current - e;
         x = trial;
+        at.swap(trial_at);
         current = e;
         mu = std::max(mu / 3, 1e-9);
         improved = true;
