@@ -111,23 +111,31 @@ Vec3 minimize_length_energy(const std::vector<Vec3>& neighbors, const Vec3& star
   const double nl = normal.norm();
   geometry::tangent_basis(nl > 0 ? normal / nl : Vec3(0, 0, 1), t1, t2);
   Eigen::Vector2d uv(0, 0);
-  auto energy = [&](const Eigen::Vector2d& q) {
+  // The differences x - p and their lengths at the current point are kept from the evaluation that accepted it
+  // (the Jacobian needs the same values).
+  thread_local std::vector<Vec3> d_now, d_trial;
+  thread_local std::vector<double> l_now, l_trial;
+  const std::size_t n = neighbors.size();
+  for (auto* v : {&d_now, &d_trial}) v->resize(n);
+  for (auto* v : {&l_now, &l_trial}) v->resize(n);
+  auto energy = [&](const Eigen::Vector2d& q, std::vector<Vec3>& d, std::vector<double>& l) {
     const Vec3 x = start + q[0] * t1 + q[1] * t2;
     double s = 0;
-    for (const auto& p : neighbors) {
-      const double r = (x - p).norm() - m;
+    for (std::size_t i = 0; i < n; ++i) {
+      d[i] = x - neighbors[i];
+      l[i] = d[i].norm();
+      const double r = l[i] - m;
       s += r * r;
     }
     return s;
   };
-  double current = energy(uv);
+  double current = energy(uv, d_now, l_now);
   for (int it = 0; it < 10; ++it) {
-    const Vec3 x = start + uv[0] * t1 + uv[1] * t2;
     Eigen::Matrix2d jtj = Eigen::Matrix2d::Zero();
     Eigen::Vector2d jtr = Eigen::Vector2d::Zero();
-    for (const auto& p : neighbors) {
-      const Vec3 d = x - p;
-      const double l = d.norm();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3& d = d_now[i];
+      const double l = l_now[i];
       if (l <= 1e-12) continue;
       const Eigen::Vector2d j(OpenMesh::dot(d, t1) / l, OpenMesh::dot(d, t2) / l);
       jtj += j * j.transpose();
@@ -140,10 +148,12 @@ Vec3 minimize_length_energy(const std::vector<Vec3>& neighbors, const Vec3& star
     bool improved = false;
     for (int k = 0; k < 6; ++k, scale *= 0.5) {
       const Eigen::Vector2d q = uv + scale * step;
-      const double e = energy(q);
+      const double e = energy(q, d_trial, l_trial);
       if (e < current) {
         uv = q;
         current = e;
+        d_now.swap(d_trial);
+        l_now.swap(l_trial);
         improved = true;
         break;
       }
