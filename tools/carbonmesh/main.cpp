@@ -5,17 +5,44 @@
 #include <CLI/CLI.hpp>
 #include <climits>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #if defined(__GLIBC__)
 #include <malloc.h>
+#include <unistd.h>
 #endif
 
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "commands.hpp"
 
+namespace {
+
+#if defined(__GLIBC__) && defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
+// Transparent huge pages for the heap: with the tunable glibc.malloc.hugetlb=1 glibc asks the kernel to back its
+// heap with 2 MB pages (kernels with THP in "madvise" mode, the Debian default, give them only when asked). Fewer
+// page faults and TLB misses on the large vectors of the dual optimisation: the built-in sphere at 10^6 atoms
+// 45.8 -> 41.5 s, fertility at 250000 atoms 12.8 -> 12.4 s, the same output. glibc reads its tunables only at
+// start-up, so the program starts itself once more with the tunable set. Not when GLIBC_TUNABLES is set already
+// (set it empty to run without) or under valgrind (which would then lose the restarted process).
+void restart_with_huge_pages(char** argv) {
+  if (std::getenv("GLIBC_TUNABLES") != nullptr) return;
+  if (const char* preload = std::getenv("LD_PRELOAD"); preload != nullptr && std::strstr(preload, "vgpreload"))
+    return;
+  setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1);
+  execv("/proc/self/exe", argv);
+  unsetenv("GLIBC_TUNABLES");  // the restart failed (no /proc): go on without
+}
+#else
+void restart_with_huge_pages(char**) {}
+#endif
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  restart_with_huge_pages(argv);
 #if defined(__GLIBC__)
   // Large structures allocate and free meshes and vectors of tens of MB over and over (mesh copies, L-BFGS
   // vectors). glibc's defaults give blocks above its adaptive threshold back to the kernel at once, so each new one
