@@ -121,6 +121,34 @@ TEST(Remesher, RegularizeKeepsTheIntervalAndRaisesRegularity) {
   EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
   EXPECT_LE(eval(mesh), before);
 }
+// One large triangle (edges 100) in z = 0 and, 3 above it, a dense patch of 121 vertices beside the query point:
+// the 10 target vertices nearest to a point 0.5 over the large triangle are all on the patch, so without
+// bisection Algorithm 4 sees only patch faces and lands 2.5 or more away. Bisected to edges <= 5, the large
+// triangle has corners near the point and its face wins.
+TEST(ProjectionTarget, BisectsLongEdgesSoThatTheFaceUnderAPointIsACandidate) {
+  TriMesh target;
+  const auto a = target.add_vertex(Vec3(0, 0, 0)), b = target.add_vertex(Vec3(100, 0, 0)),
+             c = target.add_vertex(Vec3(50, 86.6, 0));
+  target.add_face(a, b, c);
+  std::vector<std::vector<TriMesh::VertexHandle>> grid(11);
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 10; ++j)
+      grid[static_cast<std::size_t>(i)].push_back(target.add_vertex(Vec3(44 + i, 24 + j, 3)));
+  for (std::size_t i = 0; i < 10; ++i)
+    for (std::size_t j = 0; j < 10; ++j) {
+      target.add_face(grid[i][j], grid[i + 1][j], grid[i + 1][j + 1]);
+      target.add_face(grid[i][j], grid[i + 1][j + 1], grid[i][j + 1]);
+    }
+  const Vec3 point(60, 30, 0.5);
+  const Vec3 unrefined = ProjectionTarget(target).project(point, {});
+  EXPECT_NEAR(unrefined[2], 3.0, 1e-9);  // the limitation the bisection removes
+  const Vec3 refined = ProjectionTarget(target, 5.0).project(point, {});
+  EXPECT_NEAR((refined - Vec3(60, 30, 0)).norm(), 0.0, 1e-9);
+  // A target without longer edges is used as it is: the same projections.
+  const Vec3 on_patch(47.3, 28.6, 3.4);
+  EXPECT_EQ(ProjectionTarget(target, 200.0).project(on_patch, {}), ProjectionTarget(target).project(on_patch, {}));
+}
+
 // A converged sphere with one interior edge split at its midpoint: a valence-4 vertex among regular ones.
 TriMesh sphere_with_a_valence_four_vertex() {
   TriMesh mesh = sphere(3, 2.25);

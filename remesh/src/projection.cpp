@@ -4,11 +4,14 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "carbonmesh/remesh/point_grid.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+
+#include <OpenMesh/Tools/Subdivider/Uniform/LongestEdgeT.hh>
 
 namespace carbonmesh {
 namespace {
@@ -44,7 +47,26 @@ struct ProjectionTarget::Impl {
   std::unique_ptr<PointGrid> grid;
 };
 
-ProjectionTarget::ProjectionTarget(const TriMesh& target) : impl_(std::make_unique<Impl>()) {
+namespace {
+// `mesh` with no edge longer than max_edge, or nothing when it has none.
+std::optional<TriMesh> bisected(const TriMesh& mesh, double max_edge) {
+  if (!(max_edge > 0)) return std::nullopt;
+  bool long_edge = false;
+  for (auto e : mesh.edges()) long_edge = long_edge || mesh.calc_edge_length(e) > max_edge;
+  if (!long_edge) return std::nullopt;
+  std::optional<TriMesh> out(mesh);
+  OpenMesh::Subdivider::Uniform::LongestEdgeT<TriMesh, double> bisection;
+  bisection.attach(*out);
+  bisection.set_max_edge_length(max_edge);
+  bisection(1);
+  bisection.detach();
+  return out;
+}
+}  // namespace
+
+ProjectionTarget::ProjectionTarget(const TriMesh& input, double max_edge) : impl_(std::make_unique<Impl>()) {
+  const std::optional<TriMesh> refined = bisected(input, max_edge);
+  const TriMesh& target = refined ? *refined : input;
   Impl& t = *impl_;
   const std::size_t n = target.n_vertices();
   t.points.resize(n);

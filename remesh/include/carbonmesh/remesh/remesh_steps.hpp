@@ -124,7 +124,10 @@ void optimize_vertices(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& 
 // The projection mesh M_p with its spatial index (a uniform grid over its vertices, cell_grid.hpp).
 class ProjectionTarget {
  public:
-  explicit ProjectionTarget(const TriMesh& target);
+  // With max_edge > 0 the target's edges longer than max_edge are bisected first (longest-edge bisection: the new
+  // vertices lie on the old edges, so the surface is the same). The candidates of Algorithm 4 are the faces around
+  // the k nearest target vertices: on a fan of long slivers a point can lie over a face with no corner among them.
+  explicit ProjectionTarget(const TriMesh& target, double max_edge = 0);
   ~ProjectionTarget();
   ProjectionTarget(const ProjectionTarget&) = delete;
   ProjectionTarget& operator=(const ProjectionTarget&) = delete;
