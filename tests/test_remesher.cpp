@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -147,6 +148,41 @@ TEST(ProjectionTarget, BisectsLongEdgesSoThatTheFaceUnderAPointIsACandidate) {
   // A target without longer edges is used as it is: the same projections.
   const Vec3 on_patch(47.3, 28.6, 3.4);
   EXPECT_EQ(ProjectionTarget(target, 200.0).project(on_patch, {}), ProjectionTarget(target).project(on_patch, {}));
+}
+
+// A cube of 12 triangles (a CAD export) with side 46.72 and the interval [1.9676, 2.9514]: longest-edge bisection
+// makes each face a grid of right isosceles triangles with legs 2.065 and hypotenuses 2.92, every edge inside and
+// vertices of valence 4 and 8. The remesher used to stop there (0 iterations; at --atoms 20000, 98% of the
+// triangles right-angled and 37% of the atoms strained in the dual); it now runs its loop.
+TEST(Remesher, AnIrregularMeshWithEveryEdgeInsideIsStillRemeshed) {
+  TriMesh cube;
+  std::vector<TriMesh::VertexHandle> v;
+  for (int x = 0; x < 2; ++x)
+    for (int y = 0; y < 2; ++y)
+      for (int z = 0; z < 2; ++z) v.push_back(cube.add_vertex(46.72 * Vec3(x, y, z)));
+  const int faces[12][3] = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5}, {0, 4, 5}, {0, 5, 1},
+                            {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
+  for (const auto& f : faces) cube.add_face(v[f[0]], v[f[1]], v[f[2]]);
+  RemeshSettings settings;
+  settings.emin = 1.9676;
+  settings.emax = 2.9514;
+  const RemeshResult r = remesh(cube, settings);
+  EXPECT_GT(r.bisected_vertices, 0u);
+  EXPECT_GE(r.iterations, 1);
+  EXPECT_TRUE(r.converged);
+  EXPECT_TRUE(topology(cube).same_type(r.before));
+  // Triangles with an angle above 80 degrees: 98% in the bisection grid.
+  std::size_t right = 0;
+  for (auto f : cube.faces()) {
+    std::array<Vec3, 3> p;
+    int k = 0;
+    for (auto w : cube.fv_range(f)) p[static_cast<std::size_t>(k++)] = cube.point(w);
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Vec3 a = p[(i + 1) % 3] - p[i], b = p[(i + 2) % 3] - p[i];
+      if (std::acos(OpenMesh::dot(a, b) / (a.norm() * b.norm())) > 80 * M_PI / 180) ++right;
+    }
+  }
+  EXPECT_LT(static_cast<double>(right), 0.1 * static_cast<double>(cube.n_faces()));
 }
 
 // A converged sphere with one interior edge split at its midpoint: a valence-4 vertex among regular ones.

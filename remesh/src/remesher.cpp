@@ -185,7 +185,12 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   std::size_t churn = 0;
   std::size_t lowest = std::numeric_limits<std::size_t>::max();
   int stalled = 0;
-  while (edges.long_edges + edges.short_edges > 0 && iteration < s.iterations) {
+  // A mesh with every edge inside but vertices two or more off their ideal valence (the valence-4/8 grid that the
+  // bisection above makes of a cube's faces) gets one ordinary iteration anyway: flips and the low-pass filter,
+  // which the interval test alone would skip. Then the loop goes on while edges are outside.
+  const bool irregular = edges.long_edges + edges.short_edges == 0 && valence_stats(mesh).percent_eval_gt1 > 0;
+  while ((edges.long_edges + edges.short_edges > 0 || (iteration == 0 && irregular)) && iteration < s.iterations) {
+    const bool restart = iteration == 0 && irregular;
     if (s.p > 0 && iteration > 0 && iteration % s.p == 0) {
       target = std::make_unique<TriMesh>(mesh);
       projection_target = std::make_unique<ProjectionTarget>(*target, kTargetEdgeFactor * s.emax);
@@ -208,7 +213,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       lowest = std::numeric_limits<std::size_t>::max();
       stalled = 0;
     }
-    const bool nonlinear_phase = troubling_percent(edges) <= s.l && !kick;
+    const bool nonlinear_phase = troubling_percent(edges) <= s.l && !kick && !restart;
     IntermediateInterval step = intermediate_interval(edges.mean, s.emin, s.emax);
     if (nonlinear_phase) step = {s.emin - 0.25 * (s.emax - s.emin), s.emax + 0.25 * (s.emax - s.emin)};
     const StellarResult stellar = stellar_operations(mesh, step.emin, step.emax, m);
@@ -224,7 +229,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     spdlog::debug("iteration {}: interval [{:.4f}, {:.4f}], {} splits, {} collapses, {} flips", iteration + 1,
                   step.emin, step.emax, stellar.splits, stellar.collapses, flips);
     edges = edge_stats(mesh, interval);
-    const bool nonlinear = troubling_percent(edges) <= s.l;
+    const bool nonlinear = troubling_percent(edges) <= s.l && !restart;
     const double t_smooth = seconds();
     if (nonlinear)
       nonlinear_optimizer(mesh, s.kn, s.emin, s.emax);
