@@ -202,7 +202,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // When the count of long+short edges has not reached a new low for kStallIterations, one full stellar
     // step runs again (and the count starts over).
     const std::size_t troubling_now = edges.long_edges + edges.short_edges;
-    if (troubling_now < lowest) {
+    if (troubling_now < lowest && !restart) {  // the restart's count (0) is no low to beat
       lowest = troubling_now;
       stalled = 0;
     } else {
