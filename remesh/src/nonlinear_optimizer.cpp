@@ -23,7 +23,7 @@ constexpr double kFoldCos = -0.5;  // neighbouring faces more than 120 degrees a
 using geometry::kMinAngle;
 constexpr double kHingeWeight = 1000.0;  // weight of the interval hinge relative to Eq 4.7
 constexpr double kHingeMargin = 0.05;    // the hinge starts this share of the interval width inside it
-constexpr int kDenseUnknowns = 48;       // regions with at most this many unknowns are solved with a dense LDL^T
+constexpr int kDenseUnknowns = 48;       // regions with at most this many unknowns are solved with a dense LLT
 
 bool troubling(const TriMesh& mesh, TriMesh::EdgeHandle e, double emin, double emax) {
   const double l = geometry::edge_length(mesh, e);
