@@ -11,8 +11,6 @@
 #include "carbonmesh/remesh/point_grid.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 
-#include <OpenMesh/Tools/Subdivider/Uniform/LongestEdgeT.hh>
-
 namespace carbonmesh {
 namespace {
 
@@ -55,11 +53,7 @@ std::optional<TriMesh> bisected(const TriMesh& mesh, double max_edge) {
   for (auto e : mesh.edges()) long_edge = long_edge || mesh.calc_edge_length(e) > max_edge;
   if (!long_edge) return std::nullopt;
   std::optional<TriMesh> out(mesh);
-  OpenMesh::Subdivider::Uniform::LongestEdgeT<TriMesh, double> bisection;
-  bisection.attach(*out);
-  bisection.set_max_edge_length(max_edge);
-  bisection(1);
-  bisection.detach();
+  longest_edge_bisection(*out, max_edge);
   return out;
 }
 }  // namespace

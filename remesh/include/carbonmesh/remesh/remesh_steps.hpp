@@ -187,6 +187,12 @@ bool spatial_order(TriMesh& mesh);
 // unchanged if a face cannot be added (a non-manifold mesh).
 bool midpoint_subdivision(TriMesh& mesh);
 
+// ---- longest_edge_bisection.cpp -------------------------------------------------------------------------------
+
+// Bisects the longest edges (OpenMesh's LongestEdgeT) until no edge is longer than max_edge; the new vertices lie
+// at edge midpoints, so the surface is the same. Appends elements (no spatial reordering).
+void longest_edge_bisection(TriMesh& mesh, double max_edge);
+
 // ---- spring_relaxation.cpp: after a midpoint subdivision ----------------------------------------------------
 
 // `steps` Jacobi steps of springs of rest length `target` on the edges, each interior vertex moved in its tangent
