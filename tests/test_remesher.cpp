@@ -185,6 +185,24 @@ TEST(Remesher, AnIrregularMeshWithEveryEdgeInsideIsStillRemeshed) {
   EXPECT_LT(static_cast<double>(right), 0.1 * static_cast<double>(cube.n_faces()));
 }
 
+// A dense input made into a small structure: mean edge 0.3 against [2, 3]. Section 4.1's intermediate interval,
+// centred at twice the mean with the half width 0.5, would keep every edge inside it and collapse nothing.
+TEST(Remesher, AnInputMuchFinerThanTheIntervalIsSimplified) {
+  TriMesh mesh = sphere(5, 0.3);  // 20480 faces
+  const IntermediateInterval first = intermediate_interval(0.3, 2.0, 3.0);
+  EXPECT_GT(first.emin, 0.29);  // the edges shorter than the mean are collapsed
+  RemeshSettings settings;
+  settings.emin = 2.0;
+  settings.emax = 3.0;
+  const RemeshResult r = remesh(mesh, settings);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT(r.iterations, 50);
+  EXPECT_TRUE(topology(mesh).same_type(r.before));
+  const EdgeStats e = edge_stats(mesh, {2.0, 3.0});
+  EXPECT_EQ(e.long_edges + e.short_edges, 0u);
+  EXPECT_LT(mesh.n_faces(), 1000u);  // about 390 faces of edge 2.5 cover this sphere (radius 9.2)
+}
+
 // A converged sphere with one interior edge split at its midpoint: a valence-4 vertex among regular ones.
 TriMesh sphere_with_a_valence_four_vertex() {
   TriMesh mesh = sphere(3, 2.25);

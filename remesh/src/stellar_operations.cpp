@@ -57,7 +57,10 @@ bool link_condition(const TriMesh& mesh, HH h) {
 IntermediateInterval intermediate_interval(double current_mean, double emin, double emax) {
   const double m = 0.5 * (emin + emax);
   const double c = std::min(2.0 * current_mean, m);  // section 4.1, e^i_min and e^i_max
-  const double half = 0.5 * (emax - emin);
+  // The half width is (emax - emin) / 2, except on a mesh whose mean edge is below that (a dense scan made into a
+  // small structure): there c - (emax - emin) / 2 < m_i would collapse nothing, iteration after iteration, so the
+  // lower bound is kept at m_i (c / 2) and the edges shorter than the mean are collapsed.
+  const double half = std::min(0.5 * (emax - emin), 0.5 * c);
   return {c - half, c + half};
 }
 

@@ -16,7 +16,8 @@ namespace carbonmesh {
 
 // ---- stellar_operations.cpp (section 4.1) -------------------------------------------------------------
 
-// The intermediate interval [e^i_min, e^i_max] of section 4.1 from the current mean edge length m_i.
+// The intermediate interval [e^i_min, e^i_max] of section 4.1 from the current mean edge length m_i; on a mesh
+// with m_i below (emax - emin) / 2 its lower bound is m_i instead of one that no edge is below.
 struct IntermediateInterval {
   double emin = 0, emax = 0;
 };
