@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "carbonmesh/carbon/lammps_data.hpp"
 #include "carbonmesh/carbon/lammps_dump.hpp"
@@ -111,6 +112,36 @@ TEST(BuildCommand, OpenCapIsPassivatedWithTopology) {
   EXPECT_EQ(d.positions.size(), atomic.positions.size());
   EXPECT_EQ(d.bonds.size(), s["bonds"].get<std::size_t>());
   EXPECT_EQ(s["files"]["lammps_data_full"], (dir / "out" / "structure-full.data").string());
+  fs::remove_all(dir);
+}
+
+// A scan's debris: a sphere with a speck (a sphere of radius 0.2) and a stray triangle beside it. Both are removed
+// before the remesh: no atoms on top of each other, and the sphere converges as it does alone.
+TEST(BuildCommand, ComponentsSmallerThanAC20CageAreRemoved) {
+  const fs::path dir = temp_dir("debris");
+  TriMesh mesh = make_icosphere({10.0, 3});
+  const TriMesh speck = make_icosphere({0.2, 1});
+  std::vector<TriMesh::VertexHandle> v;
+  for (auto w : speck.vertices()) v.push_back(mesh.add_vertex(speck.point(w) + Vec3(15, 0, 0)));
+  for (auto f : speck.faces()) {
+    std::vector<TriMesh::VertexHandle> corners;
+    for (auto w : speck.fv_range(f)) corners.push_back(v[static_cast<std::size_t>(w.idx())]);
+    mesh.add_face(corners);
+  }
+  mesh.add_face(mesh.add_vertex(Vec3(20, 0, 0)), mesh.add_vertex(Vec3(20.1, 0, 0)), mesh.add_vertex(Vec3(20, 0.1, 0)));
+  save_mesh(mesh, dir / "debris.off");
+  ASSERT_EQ(run("build " + (dir / "debris.off").string() + " -o " + (dir / "out").string() +
+                " --atoms 1500 --no-report"),
+            0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  EXPECT_EQ(s["removed_components"]["removed"], 2);
+  EXPECT_EQ(s["removed_components"]["faces"], speck.n_faces() + 1);
+  EXPECT_EQ(s["input_topology"]["components"], 3);
+  EXPECT_EQ(s["remesh"]["topology_after"]["components"], 1);
+  EXPECT_TRUE(s["remesh"]["converged"].get<bool>());
+  EXPECT_LT(s["remesh"]["iterations"].get<int>(), 150);
+  EXPECT_GT(s["optimization"]["bonds_after"]["min"].get<double>(), 1.3);
+  EXPECT_DOUBLE_EQ(s["percent_three_bonds"].get<double>(), 100.0);
   fs::remove_all(dir);
 }
 

@@ -1,9 +1,11 @@
 // Metrics: topology, valence statistics and the Hausdorff distance on meshes with known answers.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <utility>
 #include <vector>
 
+#include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
@@ -45,6 +47,38 @@ TEST(Topology, BordersAndComponentsAreCounted) {
   EXPECT_EQ(t.components, 2u);
   EXPECT_EQ(t.boundary_loops, 2u);
   EXPECT_EQ(t.genus, 0);
+}
+
+// Two spheres of radius 10 (area ~1250) and one of radius 1 (~12.5): at a threshold of 100 only the small one
+// goes, with its vertices; at a threshold above every area the largest component still stays.
+TEST(SmallComponents, OnlyComponentsBelowTheAreaAreRemovedAndTheLargestStays) {
+  auto three_spheres = [] {
+    TriMesh mesh;
+    for (const auto& [radius, shift] : std::vector<std::pair<double, double>>{{10, 0}, {1, 15}, {10, 30}}) {
+      const TriMesh s = make_icosphere({radius, 2});
+      std::vector<TriMesh::VertexHandle> v;
+      for (auto w : s.vertices()) v.push_back(mesh.add_vertex(s.point(w) + Vec3(shift, 0, 0)));
+      for (auto f : s.faces()) {
+        std::vector<TriMesh::VertexHandle> corners;
+        for (auto w : s.fv_range(f)) corners.push_back(v[static_cast<std::size_t>(w.idx())]);
+        mesh.add_face(corners);
+      }
+    }
+    return mesh;
+  };
+  TriMesh mesh = three_spheres();
+  const std::size_t per_sphere = mesh.n_faces() / 3;
+  const SmallComponents r = remove_small_components(mesh, 100);
+  EXPECT_EQ(r.removed, 1u);
+  EXPECT_EQ(r.faces, per_sphere);
+  EXPECT_NEAR(r.area, 4 * M_PI, 1.5);
+  EXPECT_EQ(topology(mesh).components, 2u);
+  EXPECT_EQ(mesh.n_faces(), 2 * per_sphere);
+  EXPECT_EQ(mesh.n_vertices(), 2 * (per_sphere / 2 + 2));  // no isolated vertex left
+  const SmallComponents all = remove_small_components(mesh, 1e9);
+  EXPECT_EQ(all.removed, 1u);  // the two are equal: the first is the largest and stays
+  EXPECT_EQ(topology(mesh).components, 1u);
+  EXPECT_EQ(remove_small_components(mesh, 1e9).removed, 0u);
 }
 
 TEST(Valence, IcosahedronHasNoRegularVertexAndEvalOneEverywhere) {

@@ -19,6 +19,7 @@
 #include "carbonmesh/dual/dual_mesh.hpp"
 #include "carbonmesh/dual/optimize.hpp"
 #include "carbonmesh/remesh/atomic_file.hpp"
+#include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/io.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
@@ -162,6 +163,14 @@ int run_build(BuildOptions& o) {
   scale_mesh(mesh, scaled.factor);
   spdlog::info("{}: scaled by {:.6g} to area {:.1f} A^2 (about {:.0f} atoms), edges in [{:.4f}, {:.4f}] A", source,
                scaled.factor, scaled.area, scaled.expected_atoms, scaled.emin, scaled.emax);
+  // Components with less area than the smallest fullerene (C20) can hold no carbon net: scan debris, a stray
+  // triangle. Kept, they leave edges outside the interval (the remesher runs all its iterations) and atoms
+  // bonded at zero distance in the structure. The largest component always stays.
+  const SmallComponents debris = remove_small_components(mesh, 20 * area_per_atom(o.bond));
+  if (debris.removed > 0)
+    spdlog::warn("{}: removed {} component{} smaller than a C20 cage ({:.1f} A^2): {} faces, {:.3g} A^2 in all",
+                 source, debris.removed, debris.removed == 1 ? "" : "s", 20 * area_per_atom(o.bond), debris.faces,
+                 debris.area);
   const TriMesh surface = mesh;  // the surface the atoms stay on
   clock.stop("scale");
 
@@ -252,6 +261,7 @@ int run_build(BuildOptions& o) {
   summary["bond"] = o.bond;
   summary["scale"] = to_json(scaled);
   summary["input_topology"] = to_json(input_topology);
+  summary["removed_components"] = to_json(debris);
   summary["genus"] = remeshed.after.genus;
   summary["borders"] = remeshed.after.boundary_loops;
   summary["remesh"] = to_json(remeshed);
