@@ -214,6 +214,14 @@ int run_build(BuildOptions& o) {
   // Dual and its optimisation.
   Dual dual = build_dual(mesh);
   clock.stop("dual");
+  // One atom per triangle: a remeshed surface with much less area than the input (detail finer than the edges,
+  // such as a scan's noise, is bridged) holds fewer atoms than the scale promised.
+  if (const double atoms = static_cast<double>(dual.atoms());
+      o.in.size() > 0 && std::abs(atoms - scaled.expected_atoms) > 0.1 * scaled.expected_atoms)
+    spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the remeshed surface has {:.0f}% of the "
+                 "input's area (detail finer than the {:.2f} A edges, such as noise, is bridged)",
+                 source, atoms, scaled.expected_atoms, 100 * surface_area(mesh) / scaled.area,
+                 0.5 * (scaled.emin + scaled.emax));
   o.optimize.bond = o.bond;
   // Coarse start: the duals of the coarse levels, optimised coarsest first at 2^k times the bond (and window), give
   // the fine atoms their long-range displacements first (carbonmesh/dual/coarse_start.hpp).
