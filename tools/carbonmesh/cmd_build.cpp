@@ -214,14 +214,16 @@ int run_build(BuildOptions& o) {
   // Dual and its optimisation.
   Dual dual = build_dual(mesh);
   clock.stop("dual");
-  // One atom per triangle: a remeshed surface with much less area than the input (detail finer than the edges,
-  // such as a scan's noise, is bridged) holds fewer atoms than the scale promised.
+  // One atom per triangle of area about (sqrt(3)/4) a^2: a remeshed surface with less area than the input (detail
+  // finer than the edges, such as a scan's noise, is bridged) or with a mean edge away from a (the interval allows
+  // 0.8 a to 1.2 a) holds another number of atoms than the scale promised.
   if (const double atoms = static_cast<double>(dual.atoms());
       o.in.size() > 0 && std::abs(atoms - scaled.expected_atoms) > 0.1 * scaled.expected_atoms)
     spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the remeshed surface has {:.0f}% of the "
-                 "input's area (detail finer than the {:.2f} A edges, such as noise, is bridged)",
+                 "input's area (detail finer than the edges, such as noise, is bridged) and a mean edge of {:.3f} A "
+                 "(target {:.3f} A)",
                  source, atoms, scaled.expected_atoms, 100 * surface_area(mesh) / scaled.area,
-                 0.5 * (scaled.emin + scaled.emax));
+                 remeshed_stats.edges.mean, scaled.edge);
   o.optimize.bond = o.bond;
   // Coarse start: the duals of the coarse levels, optimised coarsest first at 2^k times the bond (and window), give
   // the fine atoms their long-range displacements first (carbonmesh/dual/coarse_start.hpp).
