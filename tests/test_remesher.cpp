@@ -203,6 +203,29 @@ TEST(Remesher, AnInputMuchFinerThanTheIntervalIsSimplified) {
   EXPECT_LT(mesh.n_faces(), 1000u);  // about 390 faces of edge 2.5 cover this sphere (radius 9.2)
 }
 
+// `build` asks for the mean edge a: an icosphere whose edges already lie in a [0.8, 1.2] with a mean 12% below a
+// is kept as it is without settings.target_mean (about 30% more triangles than the area needs) and brought to a
+// with it.
+TEST(Remesher, TargetMeanRemeshesAnInputWhoseMeanIsInsideButOff) {
+  const double a = 2.46;
+  RemeshSettings settings;
+  settings.emin = 0.8 * a;
+  settings.emax = 1.2 * a;
+  TriMesh kept = sphere(3, 0.88 * a);
+  TriMesh brought = kept;
+  const RemeshResult r0 = remesh(kept, settings);
+  EXPECT_LT(edge_stats(kept).mean, 0.93 * a);
+  settings.target_mean = a;
+  const RemeshResult r1 = remesh(brought, settings);
+  EXPECT_TRUE(r0.converged);
+  EXPECT_TRUE(r1.converged);
+  EXPECT_NEAR(edge_stats(brought).mean, a, 0.05 * a);
+  const EdgeStats e = edge_stats(brought, {settings.emin, settings.emax});
+  EXPECT_EQ(e.long_edges + e.short_edges, 0u);
+  EXPECT_TRUE(topology(brought).same_type(r1.before));
+  EXPECT_LT(brought.n_faces(), kept.n_faces());
+}
+
 // A converged sphere with one interior edge split at its midpoint: a valence-4 vertex among regular ones.
 TriMesh sphere_with_a_valence_four_vertex() {
   TriMesh mesh = sphere(3, 2.25);

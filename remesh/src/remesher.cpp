@@ -50,6 +50,7 @@ constexpr double kReorderShare = 0.2;
 constexpr int kCoarseIterations = 50;
 constexpr int kSubdivisionSprings = 4;  // spring_relaxation steps after each midpoint subdivision
 constexpr double kRunawayFactor = 4.0;  // faces over the expected count that stop a diverging loop
+constexpr double kTargetMeanTolerance = 0.05;  // settings.target_mean: a mean edge this share off it is remeshed
 // The projection target's edges are bisected down to this many emax (ProjectionTarget): bunny.off at 250000 atoms
 // (its filled base a fan of slivers with 35-50 A edges, emax 2.95 A) otherwise projected vertices onto faces
 // beside theirs, collapsing edges to nothing, and ended after 150 iterations with 47 edges outside.
@@ -103,13 +104,19 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       (s.fit_surface || s.snap_features) && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
   auto projection_target = std::make_unique<ProjectionTarget>(*target, kTargetEdgeFactor * s.emax);
   EdgeStats edges = edge_stats(mesh, interval);
+  // settings.target_mean: a mean edge inside the interval but away from the target would be kept (the loop only
+  // mends the edges outside).
+  const bool off_target = s.target_mean > 0 && edges.mean >= s.emin && edges.mean <= s.emax &&
+                          std::abs(edges.mean - s.target_mean) > kTargetMeanTolerance * s.target_mean;
   // Coarse to fine: the coarser levels remesh this input (their own surface fit and snap off), then every edge
-  // is halved and the midpoints are put on the input. Not for an input that has every edge inside already.
-  if (s.coarse_levels > 0 && edges.long_edges + edges.short_edges > 0) {
+  // is halved and the midpoints are put on the input. Not for an input that has every edge inside already, unless
+  // its mean edge is off the target.
+  if (s.coarse_levels > 0 && (edges.long_edges + edges.short_edges > 0 || off_target)) {
     RemeshSettings coarse = s;
     coarse.emin = 2 * s.emin;
     coarse.emax = 2 * s.emax;
     coarse.coarse_levels = s.coarse_levels - 1;
+    coarse.target_mean = 2 * s.target_mean;
     // A coarse level converges within kCoarseIterations where it is a good start (fertility at 10^6 atoms: 16);
     // one that has not by then is given up.
     coarse.iterations = std::min(s.iterations, kCoarseIterations);
@@ -156,6 +163,14 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       mesh = *target;
       edges = edge_stats(mesh, interval);
     }
+  }
+  // The input itself is to be remeshed here with its mean edge inside the interval but off the target: split into
+  // four first, the loop then brings the mean to the middle as from any finer mesh.
+  if (off_target && result.coarse_levels == 0 && midpoint_subdivision(mesh)) {
+    spdlog::info("the mean edge {:.4f} is inside [{:.4f}, {:.4f}] but {:.1f}% off {:.4f}: split into four to remesh "
+                 "from finer edges",
+                 edges.mean, s.emin, s.emax, 100 * (edges.mean / s.target_mean - 1), s.target_mean);
+    edges = edge_stats(mesh, interval);
   }
   // An input much coarser than the interval (a small model scaled up for a large structure): the first
   // iterations would split every edge once per pass and overshoot to many short edges. Longest-edge bisection

@@ -181,6 +181,9 @@ int run_build(BuildOptions& o) {
   o.remesh.fit_surface = false;
   o.remesh.snap_features = false;  // likewise, and its distance trees over the whole mesh cost most at 1M atoms
   o.remesh.emax = scaled.emax;
+  // The mean edge sets the atom count: an input already inside the interval is remeshed unless its mean is near a.
+  // Not the built-in sphere, whose edges are centred in the interval and whose pentagons the remesher would move.
+  if (!o.in.empty()) o.remesh.target_mean = scaled.edge;
   // Coarse levels for large structures: remeshed at 2^k times the interval, every edge then halved k times (springs
   // evening out the triangles after each halving), and the dual optimisation started from the optimised coarse
   // duals, coarsest first. One level (bunny, fertility and a torus at 24000-80000 atoms): a REBO2 energy 34-49

@@ -51,6 +51,12 @@ struct RemeshSettings {
   // edge midpoints (halving every edge), project onto the input and continue at the next finer interval. For
   // large structures: the fine level starts nearly converged, and with 4^k times fewer valence defects.
   int coarse_levels = 0;
+  // When > 0 (`build`: the target edge a): a mesh that starts with its mean edge inside [emin, emax] but more than
+  // 5% away from target_mean is first split into four triangles per triangle at its edge midpoints, so that the
+  // loop brings the mean to the middle of the interval, as it does from a mesh with a mean edge outside (otherwise
+  // it only mends the few edges outside; one atom per triangle: the atom count of a build follows the mean edge).
+  // Doubled for each coarse level.
+  double target_mean = 0;
   // Called with the mesh of every coarse level that converged, just before it is subdivided (level 1: the one at
   // twice the interval; on the input, not fitted). May be empty.
   std::function<void(const TriMesh&, int level)> on_coarse_mesh;
