@@ -100,7 +100,7 @@ def make_inputs(cli, folder):
     tau = 2 * math.pi
     return [
         ("icosphere, 327680 faces (a dense scan made small)", shape("dense", "sphere", "--subdivisions", "7"),
-         [2000, 20000]),
+         [2000, 20000, 1000000]),
         ("icosphere + a speck of radius 0.2", write("speck", merged(sphere, speck)), [2000]),
         ("icosphere + one stray triangle", write("stray", merged(sphere, stray)), [2000]),
         ("icosphere with 4% radial noise", write("noisy", noisy), [2000, 20000]),
