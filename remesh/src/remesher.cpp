@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 
 namespace carbonmesh {
@@ -48,6 +49,9 @@ void check_size(const TriMesh& mesh, const RemeshSettings& s) {
 constexpr int kStallIterations = 5;
 constexpr double kReorderShare = 0.2;
 constexpr int kCoarseIterations = 50;
+constexpr std::size_t kCoarseCheckSamples = 20000;  // input samples that check a post-processed coarse level
+constexpr std::size_t kCoarseEdgesLeft = 10;          // edges outside a post-processed coarse level that may be left,
+constexpr std::size_t kCoarseEdgesLeftShare = 10000;  // or one in this many
 constexpr int kSubdivisionSprings = 4;  // spring_relaxation steps after each midpoint subdivision
 constexpr double kRunawayFactor = 4.0;  // faces over the expected count that stop a diverging loop
 constexpr double kTargetMeanTolerance = 0.05;  // settings.target_mean: a mean edge this share off it is remeshed
@@ -134,7 +138,23 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     result.coarse_iterations = c.coarse_iterations + c.iterations;
     // A coarse level that needed the post-processing (a feature thinner than twice the interval, such as an ear
     // at a small structure size) is no starting point: the fine level then starts over from the input.
-    const bool usable = c.converged && !c.post_processed && !c.topology_violation;
+    bool usable = c.converged && !c.post_processed && !c.topology_violation;
+    // One that needed the post-processing and is left with no or a few edges outside (at a border of a scan, say;
+    // the finer levels mend them) is still a start if it lost no part of the surface: every sampled input point
+    // within two of its longest edges (2 coarse emax) of it; a border of a scan cut across by the coarse edges
+    // is farther than one.
+    const std::size_t left = c.long_edges + c.short_edges;
+    if (c.post_processed && !c.topology_violation &&
+        left <= std::max(kCoarseEdgesLeft, mesh.n_edges() / kCoarseEdgesLeftShare)) {
+      HausdorffSettings sampling;
+      sampling.samples = kCoarseCheckSamples;
+      const double farthest = hausdorff_distance(mesh, *target, sampling).backward_max;
+      usable = farthest <= 2 * coarse.emax;
+      spdlog::info("coarse level [{:.4f}, {:.4f}] post-processed, {} edges outside; the input is {:.4f} from it at "
+                   "most ({} samples): {}",
+                   coarse.emin, coarse.emax, left, farthest, sampling.samples,
+                   usable ? "kept as the start" : "farther than 2 emax, not kept");
+    }
     std::optional<TriMesh> coarse_mesh;
     if (usable && s.on_coarse_mesh) coarse_mesh = mesh;
     if (usable && midpoint_subdivision(mesh)) {
