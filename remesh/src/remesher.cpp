@@ -137,7 +137,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     const RemeshResult c = remesh(mesh, coarse);
     result.coarse_iterations = c.coarse_iterations + c.iterations;
     // A coarse level that needed the post-processing (a feature thinner than twice the interval, such as an ear
-    // at a small structure size) is no starting point: the fine level then starts over from the input.
+    // at a small structure size) is as a rule no starting point: the fine level then starts over from the input.
     bool usable = c.converged && !c.post_processed && !c.topology_violation;
     // One that needed the post-processing and is left with no or a few edges outside (at a border of a scan, say;
     // the finer levels mend them) is still a start if it lost no part of the surface: every sampled input point

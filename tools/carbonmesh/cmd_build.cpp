@@ -221,7 +221,7 @@ int run_build(BuildOptions& o) {
   // finer than the edges, such as a scan's noise, is bridged) or with a mean edge away from a (the interval allows
   // 0.8 a to 1.2 a) holds another number of atoms than the scale promised.
   if (const double atoms = static_cast<double>(dual.atoms());
-      o.in.size() > 0 && std::abs(atoms - scaled.expected_atoms) > 0.1 * scaled.expected_atoms)
+      !o.in.empty() && std::abs(atoms - scaled.expected_atoms) > 0.1 * scaled.expected_atoms)
     spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the remeshed surface has {:.0f}% of the "
                  "input's area (detail finer than the edges, such as noise, is bridged) and a mean edge of {:.3f} A "
                  "(target {:.3f} A)",
