@@ -32,6 +32,18 @@ void validate(const RemeshSettings& s) {
     throw InputError(fmt::format("snap tolerance {} must be finite and not negative", s.snap_tolerance));
 }
 
+// Whether every edge outside `interval` has an end on a border (where the post-processing cannot move the
+// border vertex off its curve; a finer level has room to mend it).
+bool outside_edges_touch_border(const TriMesh& mesh, const EdgeInterval& interval) {
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const double length = (mesh.point(mesh.to_vertex_handle(h)) - mesh.point(mesh.from_vertex_handle(h))).norm();
+    if (length >= interval.emin && length <= interval.emax) continue;
+    if (!mesh.is_boundary(mesh.to_vertex_handle(h)) && !mesh.is_boundary(mesh.from_vertex_handle(h))) return false;
+  }
+  return true;
+}
+
 // About how many triangles the remeshed surface has: the area over an equilateral triangle of the mid edge.
 double expected_faces(const TriMesh& mesh, const RemeshSettings& s) {
   const double m = 0.5 * (s.emin + s.emax);
@@ -50,8 +62,8 @@ constexpr int kStallIterations = 5;
 constexpr double kReorderShare = 0.2;
 constexpr int kCoarseIterations = 50;
 constexpr std::size_t kCoarseCheckSamples = 20000;  // input samples that check a post-processed coarse level
-constexpr std::size_t kCoarseEdgesLeft = 10;          // edges outside a post-processed coarse level that may be left,
-constexpr std::size_t kCoarseEdgesLeftShare = 10000;  // or one in this many
+constexpr std::size_t kCoarseEdgesLeft = 10;  // edges outside a post-processed coarse level (and the finer level
+constexpr std::size_t kCoarseEdgesLeftShare = 10000;  // it starts) that may be left, or one in this many
 constexpr int kSubdivisionSprings = 4;  // spring_relaxation steps after each midpoint subdivision
 constexpr double kRunawayFactor = 4.0;  // faces over the expected count that stop a diverging loop
 constexpr double kTargetMeanTolerance = 0.05;  // settings.target_mean: a mean edge this share off it is remeshed
@@ -108,6 +120,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       (s.fit_surface || s.snap_features) && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
   auto projection_target = std::make_unique<ProjectionTarget>(*target, kTargetEdgeFactor * s.emax);
   EdgeStats edges = edge_stats(mesh, interval);
+  bool from_post_processed = false;  // the coarse start below is a post-processed coarse level
   // settings.target_mean: a mean edge inside the interval but away from the target would be kept (the loop only
   // mends the edges outside).
   const bool off_target = s.target_mean > 0 && edges.mean >= s.emin && edges.mean <= s.emax &&
@@ -139,13 +152,16 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // A coarse level that needed the post-processing (a feature thinner than twice the interval, such as an ear
     // at a small structure size) is as a rule no starting point: the fine level then starts over from the input.
     bool usable = c.converged && !c.post_processed && !c.topology_violation;
-    // One that needed the post-processing and is left with no or a few edges outside (at a border of a scan, say;
-    // the finer levels mend them) is still a start if it lost no part of the surface: every sampled input point
-    // within two of its longest edges (2 coarse emax) of it; a border of a scan cut across by the coarse edges
-    // is farther than one.
+    // One that needed the post-processing and is left with no edges outside, or a few, each with an end on a
+    // border (a scan's hole; the finer levels mend them), is still a start if it lost no part of the surface: every
+    // sampled input point within two of its longest edges (2 coarse emax) of it (a border of a scan cut across by
+    // the coarse edges is farther than one). Edges left outside in the interior mean a feature too thin for the
+    // level. A level kept this way can still be a poor start (a torus tube of radius 0.6 at [0.8, 1.2], 0 edges
+    // outside after post-processing): see the retry at the end.
     const std::size_t left = c.long_edges + c.short_edges;
     if (c.post_processed && !c.topology_violation &&
-        left <= std::max(kCoarseEdgesLeft, mesh.n_edges() / kCoarseEdgesLeftShare)) {
+        left <= std::max(kCoarseEdgesLeft, mesh.n_edges() / kCoarseEdgesLeftShare) &&
+        outside_edges_touch_border(mesh, EdgeInterval{coarse.emin, coarse.emax})) {
       HausdorffSettings sampling;
       sampling.samples = kCoarseCheckSamples;
       const double farthest = hausdorff_distance(mesh, *target, sampling).backward_max;
@@ -155,6 +171,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                    coarse.emin, coarse.emax, left, farthest, sampling.samples,
                    usable ? "kept as the start" : "farther than 2 emax, not kept");
     }
+    from_post_processed = usable && c.post_processed;
     std::optional<TriMesh> coarse_mesh;
     if (usable && s.on_coarse_mesh) coarse_mesh = mesh;
     if (usable && midpoint_subdivision(mesh)) {
@@ -354,6 +371,26 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   result.percent_regular = valence.percent_regular;
   result.percent_eval_gt1 = valence.percent_eval_gt1;
   result.after = topology(mesh);
+  // Started from a post-processed coarse level and left with more than a few edges outside: the level was no start
+  // after all (a feature too thin for it, such as a torus tube of radius 0.6 at [0.8, 1.2]: 24 edges outside). The
+  // input is remeshed directly, and the better of the two kept. (p > 0 replaces *target: no retry.)
+  if (from_post_processed && s.p == 0 &&
+      result.long_edges + result.short_edges > std::max(kCoarseEdgesLeft, mesh.n_edges() / kCoarseEdgesLeftShare)) {
+    spdlog::info("{} long and {} short edges left after the start from a post-processed coarse level: remeshing the "
+                 "input at [{:.4f}, {:.4f}] directly",
+                 result.long_edges, result.short_edges, s.emin, s.emax);
+    TriMesh again = *target;
+    RemeshSettings direct = s;
+    direct.coarse_levels = 0;
+    RemeshResult r = remesh(again, direct);
+    if (r.long_edges + r.short_edges < result.long_edges + result.short_edges) {
+      r.coarse_iterations += result.coarse_iterations + result.iterations;
+      r.log.insert(r.log.begin(), result.log.begin(), result.log.end());
+      r.before = result.before;
+      mesh = std::move(again);
+      result = std::move(r);
+    }
+  }
   result.seconds = seconds();
   return result;
 }
