@@ -15,6 +15,7 @@
 #include "carbonmesh/carbon/lammps_dump.hpp"
 #include "carbonmesh/remesh/io.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "test_meshes.hpp"
 #include "test_paths.hpp"
 
 using namespace carbonmesh;
@@ -121,13 +122,7 @@ TEST(BuildCommand, ComponentsSmallerThanAC20CageAreRemoved) {
   const fs::path dir = temp_dir("debris");
   TriMesh mesh = make_icosphere({10.0, 3});
   const TriMesh speck = make_icosphere({0.2, 1});
-  std::vector<TriMesh::VertexHandle> v;
-  for (auto w : speck.vertices()) v.push_back(mesh.add_vertex(speck.point(w) + Vec3(15, 0, 0)));
-  for (auto f : speck.faces()) {
-    std::vector<TriMesh::VertexHandle> corners;
-    for (auto w : speck.fv_range(f)) corners.push_back(v[static_cast<std::size_t>(w.idx())]);
-    mesh.add_face(corners);
-  }
+  test::append_copy(mesh, speck, Vec3(15, 0, 0));
   mesh.add_face(mesh.add_vertex(Vec3(20, 0, 0)), mesh.add_vertex(Vec3(20.1, 0, 0)), mesh.add_vertex(Vec3(20, 0.1, 0)));
   save_mesh(mesh, dir / "debris.off");
   ASSERT_EQ(run("build " + (dir / "debris.off").string() + " -o " + (dir / "out").string() +

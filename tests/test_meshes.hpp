@@ -1,5 +1,7 @@
 #pragma once
 // Helpers shared by the remesher tests.
+#include <vector>
+
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/mesh.hpp"
 
@@ -10,6 +12,18 @@ inline TriMesh scaled(TriMesh mesh, double mean) {
   const double factor = mean / edge_stats(mesh).mean;
   for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * factor);
   return mesh;
+}
+
+// Adds a copy of `from`, scaled by `scale` about the origin and then shifted by `shift`, to `to` as another
+// component.
+inline void append_copy(TriMesh& to, const TriMesh& from, const Vec3& shift, double scale = 1.0) {
+  std::vector<TriMesh::VertexHandle> map;
+  for (auto v : from.vertices()) map.push_back(to.add_vertex(scale * from.point(v) + shift));
+  for (auto f : from.faces()) {
+    std::vector<TriMesh::VertexHandle> corners;
+    for (auto v : from.fv_range(f)) corners.push_back(map[static_cast<std::size_t>(v.idx())]);
+    to.add_face(corners);
+  }
 }
 
 }  // namespace carbonmesh::test

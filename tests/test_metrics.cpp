@@ -9,6 +9,7 @@
 #include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "test_meshes.hpp"
 
 using namespace carbonmesh;
 
@@ -54,16 +55,8 @@ TEST(Topology, BordersAndComponentsAreCounted) {
 TEST(SmallComponents, OnlyComponentsBelowTheAreaAreRemovedAndTheLargestStays) {
   auto three_spheres = [] {
     TriMesh mesh;
-    for (const auto& [radius, shift] : std::vector<std::pair<double, double>>{{10, 0}, {1, 15}, {10, 30}}) {
-      const TriMesh s = make_icosphere({radius, 2});
-      std::vector<TriMesh::VertexHandle> v;
-      for (auto w : s.vertices()) v.push_back(mesh.add_vertex(s.point(w) + Vec3(shift, 0, 0)));
-      for (auto f : s.faces()) {
-        std::vector<TriMesh::VertexHandle> corners;
-        for (auto w : s.fv_range(f)) corners.push_back(v[static_cast<std::size_t>(w.idx())]);
-        mesh.add_face(corners);
-      }
-    }
+    for (const auto& [radius, shift] : std::vector<std::pair<double, double>>{{10, 0}, {1, 15}, {10, 30}})
+      test::append_copy(mesh, make_icosphere({radius, 2}), Vec3(shift, 0, 0));
     return mesh;
   };
   TriMesh mesh = three_spheres();

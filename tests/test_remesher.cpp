@@ -502,13 +502,7 @@ TriMesh holed(TriMesh mesh) {
 
 TriMesh two_spheres(const TriMesh& sphere) {
   TriMesh mesh = sphere;
-  std::vector<TriMesh::VertexHandle> map;
-  for (auto v : sphere.vertices()) map.push_back(mesh.add_vertex(sphere.point(v) + Vec3(100, 0, 0)));
-  for (auto f : sphere.faces()) {
-    std::vector<TriMesh::VertexHandle> corners;
-    for (auto v : sphere.fv_range(f)) corners.push_back(map[static_cast<std::size_t>(v.idx())]);
-    mesh.add_face(corners);
-  }
+  test::append_copy(mesh, sphere, Vec3(100, 0, 0));
   return mesh;
 }
 
