@@ -16,6 +16,7 @@
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "remesh_geometry.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -36,9 +37,9 @@ void validate(const RemeshSettings& s) {
 // border vertex off its curve; a finer level has room to mend it).
 bool outside_edges_touch_border(const TriMesh& mesh, const EdgeInterval& interval) {
   for (auto e : mesh.edges()) {
-    const auto h = mesh.halfedge_handle(e, 0);
-    const double length = (mesh.point(mesh.to_vertex_handle(h)) - mesh.point(mesh.from_vertex_handle(h))).norm();
+    const double length = geometry::edge_length(mesh, e);
     if (length >= interval.emin && length <= interval.emax) continue;
+    const auto h = mesh.halfedge_handle(e, 0);
     if (!mesh.is_boundary(mesh.to_vertex_handle(h)) && !mesh.is_boundary(mesh.from_vertex_handle(h))) return false;
   }
   return true;
@@ -67,6 +68,12 @@ constexpr std::size_t kCoarseEdgesLeftShare = 10000;  // it starts) that may be 
 constexpr int kSubdivisionSprings = 4;  // spring_relaxation steps after each midpoint subdivision
 constexpr double kRunawayFactor = 4.0;  // faces over the expected count that stop a diverging loop
 constexpr double kTargetMeanTolerance = 0.05;  // settings.target_mean: a mean edge this share off it is remeshed
+
+// How many edges outside the interval a post-processed coarse level (and the finer level started from it) may keep.
+std::size_t few_edges(const TriMesh& mesh) {
+  return std::max(kCoarseEdgesLeft, mesh.n_edges() / kCoarseEdgesLeftShare);
+}
+
 // The projection target's edges are bisected down to this many emax (ProjectionTarget): bunny.off at 250000 atoms
 // (its filled base a fan of slivers with 35-50 A edges, emax 2.95 A) otherwise projected vertices onto faces
 // beside theirs, collapsing edges to nothing, and ended after 150 iterations with 47 edges outside.
@@ -160,7 +167,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // outside after post-processing): see the retry at the end.
     const std::size_t left = c.long_edges + c.short_edges;
     if (c.post_processed && !c.topology_violation &&
-        left <= std::max(kCoarseEdgesLeft, mesh.n_edges() / kCoarseEdgesLeftShare) &&
+        left <= few_edges(mesh) &&
         outside_edges_touch_border(mesh, EdgeInterval{coarse.emin, coarse.emax})) {
       HausdorffSettings sampling;
       sampling.samples = kCoarseCheckSamples;
@@ -375,7 +382,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // after all (a feature too thin for it, such as a torus tube of radius 0.6 at [0.8, 1.2]: 24 edges outside). The
   // input is remeshed directly, and the better of the two kept. (p > 0 replaces *target: no retry.)
   if (from_post_processed && s.p == 0 &&
-      result.long_edges + result.short_edges > std::max(kCoarseEdgesLeft, mesh.n_edges() / kCoarseEdgesLeftShare)) {
+      result.long_edges + result.short_edges > few_edges(mesh)) {
     spdlog::info("{} long and {} short edges left after the start from a post-processed coarse level: remeshing the "
                  "input at [{:.4f}, {:.4f}] directly",
                  result.long_edges, result.short_edges, s.emin, s.emax);

@@ -52,9 +52,10 @@ struct RemeshSettings {
   // large structures: the fine level starts nearly converged, and with 4^k times fewer valence defects.
   int coarse_levels = 0;
   // When > 0 (`build`: the target edge a): a mesh that starts with its mean edge inside [emin, emax] but more than
-  // 5% away from target_mean is first split into four triangles per triangle at its edge midpoints, so that the
-  // loop brings the mean to the middle of the interval, as it does from a mesh with a mean edge outside (otherwise
-  // it only mends the few edges outside; one atom per triangle: the atom count of a build follows the mean edge).
+  // 5% away from target_mean goes on to the coarse levels (if any) as if it had edges outside, and the level that
+  // remeshes it itself first splits it into four triangles per triangle at its edge midpoints, so that the loop
+  // brings the mean to the middle of the interval as it does from a mesh with a mean edge outside (otherwise it
+  // only mends the few edges outside; one atom per triangle: the atom count of a build follows the mean edge).
   // Doubled for each coarse level.
   double target_mean = 0;
   // Called with the mesh of every coarse level that converged, just before it is subdivided (level 1: the one at
