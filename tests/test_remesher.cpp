@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -386,6 +387,38 @@ TEST(SnapToFeatures, BringsACubeCloserAndKeepsEveryEdgeInside) {
   hs.samples = 50000;
   const HausdorffResult before = hausdorff_distance(plain, input, hs), after = hausdorff_distance(snapped, input, hs);
   EXPECT_LT(after.rms, 0.85 * before.rms);
+}
+
+// A disc 0.6 thick (a sphere of radius 10 flattened 1:33) has no mesh with every edge in [1.2, 1.8] that keeps its
+// rim: the remeshed surface ends away from it, and the result says where and how far. A round sphere is not cut.
+TEST(Remesher, ReportsAPartOfTheInputThatWasCutOff) {
+  TriMesh disc = make_icosphere({10.0, 4});
+  for (auto v : disc.vertices()) {
+    Vec3 p = disc.point(v);
+    p[2] *= 0.03;
+    disc.set_point(v, p);
+  }
+  const TriMesh input = disc;
+  RemeshSettings settings;
+  settings.iterations = 30;
+  const RemeshResult cut = remesh(disc, settings);
+  EXPECT_TRUE(cut.cut_off);
+  EXPECT_GT(cut.farthest_input, settings.emax);
+  // The point is an input vertex on the rim, as far from the remeshed surface as reported.
+  const Vec3 q = cut.farthest_input_point;
+  EXPECT_NEAR(std::hypot(q[0], q[1]), 10.0, 1.0);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (auto v : disc.vertices()) nearest = std::min(nearest, (disc.point(v) - q).norm());
+  EXPECT_GE(nearest, cut.farthest_input - 1e-9) << "no remeshed vertex is nearer than the surface";
+  bool on_input = false;
+  for (auto v : input.vertices()) on_input = on_input || input.point(v) == q;
+  EXPECT_TRUE(on_input);
+
+  TriMesh round = sphere(3, 2.25);
+  const RemeshResult kept = remesh(round, RemeshSettings{});
+  ASSERT_TRUE(kept.converged);
+  EXPECT_FALSE(kept.cut_off);
+  EXPECT_LT(kept.farthest_input, 0.25 * settings.emin);
 }
 
 TEST(Remesher, IsDeterministic) {

@@ -124,7 +124,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // The input for the final feature snap and surface fit (the projection mesh is the input too unless p
   // replaces it).
   std::unique_ptr<TriMesh> input =
-      (s.fit_surface || s.snap_features) && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
+      (s.fit_surface || s.snap_features || s.measure_cut_off) && s.p > 0 ? std::make_unique<TriMesh>(mesh) : nullptr;
   auto projection_target = std::make_unique<ProjectionTarget>(*target, kTargetEdgeFactor * s.emax);
   EdgeStats edges = edge_stats(mesh, interval);
   bool from_post_processed = false;  // the coarse start below is a post-processed coarse level
@@ -144,7 +144,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // A coarse level converges within kCoarseIterations where it is a good start (fertility at 10^6 atoms: 16);
     // one that has not by then is given up.
     coarse.iterations = std::min(s.iterations, kCoarseIterations);
-    coarse.fit_surface = coarse.snap_features = false;
+    coarse.fit_surface = coarse.snap_features = coarse.measure_cut_off = false;
     coarse.on_iteration = [&](const IterationLog& l) {
       IterationLog shifted = l;
       ++shifted.level;
@@ -329,6 +329,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // Vertices of valence <= 4 that flips cannot repair are collapsed where that adds no edge outside (also on a
   // mesh that did not converge: a valence-4 vertex is a 4-ring in the carbon structure).
   spdlog::debug("valence defects: {} removed", remove_valence_defects(mesh, *projection_target, s.kn, s.emin, s.emax));
+  bool measured = false;  // result.farthest_input (taken from the snap's distances when it runs)
   // Once every edge is inside: valence optimisation that keeps them inside (regularize in correct_valence.cpp),
   // then the feature snap and the surface fit, which keep them inside too.
   if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
@@ -343,6 +344,11 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.snapped_vertices = snap.snapped;
       result.snap_max_before = snap.max_before;
       result.snap_max_after = snap.max_after;
+      if (snap.farthest >= 0) {
+        result.farthest_input = snap.max_after;
+        result.farthest_input_point = surface.point(TriMesh::VertexHandle(snap.farthest));
+        measured = true;
+      }
       spdlog::debug("snap to features: {} of {} input vertices farther than {:.4f} snapped in {} rounds, farthest "
                     "{:.4f} -> {:.4f}, {:.3f}s",
                     snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.max_before,
@@ -389,6 +395,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     TriMesh again = *target;
     RemeshSettings direct = s;
     direct.coarse_levels = 0;
+    direct.measure_cut_off = false;  // measured below on the mesh kept
     RemeshResult r = remesh(again, direct);
     if (r.long_edges + r.short_edges < result.long_edges + result.short_edges) {
       r.coarse_iterations += result.coarse_iterations + result.iterations;
@@ -396,6 +403,22 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       r.before = result.before;
       mesh = std::move(again);
       result = std::move(r);
+      measured = false;
+    }
+  }
+  if (s.measure_cut_off) {
+    if (!measured) {
+      const FarthestInputVertex far = farthest_input_vertex(mesh, input ? *input : *target);
+      result.farthest_input = far.distance;
+      result.farthest_input_point = far.point;
+    }
+    result.cut_off = result.farthest_input > s.emax;
+    if (result.cut_off) {
+      const Vec3& q = result.farthest_input_point;
+      spdlog::warn("remesh: the input point ({:.4g}, {:.4g}, {:.4g}) is {:.4g} from the remeshed surface ({:.1f} "
+                   "emax): a part of the input was cut off (as a rule a fin thinner than about emin, {:.4g}, whose "
+                   "rim the iterations pull in)",
+                   q[0], q[1], q[2], result.farthest_input, result.farthest_input / s.emax, s.emin);
     }
   }
   result.seconds = seconds();
@@ -438,6 +461,9 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"snapped_vertices", r.snapped_vertices},
           {"snap_max_before", r.snap_max_before},
           {"snap_max_after", r.snap_max_after},
+          {"farthest_input", r.farthest_input},
+          {"farthest_input_point", {r.farthest_input_point[0], r.farthest_input_point[1], r.farthest_input_point[2]}},
+          {"cut_off", r.cut_off},
           {"log", log}};
   if (r.topology_violation) j["topology_changed"] = to_json(r.changed);
   return j;

@@ -81,6 +81,18 @@ Distance local_distance(const TriMesh& mesh, const Vec3& q, TriMesh::FaceHandle 
 
 }  // namespace
 
+FarthestInputVertex farthest_input_vertex(const TriMesh& mesh, const TriMesh& input) {
+  FarthestInputVertex out;
+  const std::vector<Distance> distances = input_distances(mesh, input);
+  for (std::size_t i = 0; i < distances.size(); ++i)
+    if (distances[i].face >= 0 && (!out.measured || distances[i].d > out.distance)) {
+      out.distance = distances[i].d;
+      out.point = input.point(TriMesh::VertexHandle(static_cast<int>(i)));
+      out.measured = true;
+    }
+  return out;
+}
+
 SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                             double emax, double tolerance) {
   SnapResult result;
@@ -187,7 +199,11 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     result.rounds = round + 1;
     if (snapped == 0) break;
   }
-  for (const auto& d : distances) result.max_after = std::max(result.max_after, d.d);
+  for (std::size_t i = 0; i < distances.size(); ++i)
+    if (distances[i].face >= 0 && (result.farthest < 0 || distances[i].d > result.max_after)) {
+      result.max_after = distances[i].d;
+      result.farthest = static_cast<int>(i);
+    }
   result.fixed = std::move(fixed);
   return result;
 }

@@ -164,6 +164,7 @@ struct SnapResult {
   int rounds = 0;
   double max_before = 0, max_after = 0;  // largest distance of an interior input vertex to the remeshed surface,
                                          // before and after this step
+  int farthest = -1;                     // the input vertex at max_after (-1: none measured)
   std::vector<char> fixed;               // per vertex of the mesh: 1 where it was snapped onto the input
 };
 // Each interior input vertex farther than `tolerance` from `mesh` (farthest first) pulls the nearest free
@@ -172,6 +173,15 @@ struct SnapResult {
 // face under 3 degrees and no folded face; with every edge inside before they all stay inside.
 SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                             double emax, double tolerance);
+
+struct FarthestInputVertex {
+  double distance = 0;  // to the remeshed surface
+  Vec3 point{0, 0, 0};
+  bool measured = false;  // false: no interior input vertex or no face
+};
+// The interior vertex of `input` farthest from the surface of `mesh` (one AABB tree over its triangles). Farther
+// than an edge, it shows a part of the input that the remeshed surface cut off.
+FarthestInputVertex farthest_input_vertex(const TriMesh& mesh, const TriMesh& input);
 
 // ---- spatial_order.cpp ----------------------------------------------------------------------------------
 

@@ -47,6 +47,10 @@ struct RemeshSettings {
   // surface (snap_to_features in remesh_steps.hpp: ear rims, cone tips, grooves), every edge kept inside.
   bool snap_features = true;
   double snap_tolerance = 0.25;  // as a fraction of emin
+  // At the end, measure the input vertex farthest from the remeshed surface (RemeshResult::farthest_input) and warn
+  // when it is more than emax away: a part of the input was cut off (a fin thinner than emin, whose rim the
+  // iterations pull in). Off for the coarse levels, which the fine level measures.
+  bool measure_cut_off = true;
   // Coarse to fine: remesh into [2^k emin, 2^k emax] first, then k times split every triangle into four at its
   // edge midpoints (halving every edge), project onto the input and continue at the next finer interval. For
   // large structures: the fine level starts nearly converged, and with 4^k times fewer valence defects.
@@ -90,6 +94,11 @@ struct RemeshResult {
   std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
   // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit).
   double snap_max_before = 0, snap_max_after = 0;
+  // The interior input vertex farthest from the final surface (settings.measure_cut_off; from the snap's distances
+  // when it ran, before the fit): more than emax means a part of the input was cut off, and remesh() warns.
+  double farthest_input = 0;
+  Vec3 farthest_input_point{0, 0, 0};
+  bool cut_off = false;  // farthest_input > emax
   std::vector<IterationLog> log;
 };
 
