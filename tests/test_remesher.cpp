@@ -389,36 +389,45 @@ TEST(SnapToFeatures, BringsACubeCloserAndKeepsEveryEdgeInside) {
   EXPECT_LT(after.rms, 0.85 * before.rms);
 }
 
-// A disc 0.6 thick (a sphere of radius 10 flattened 1:33) has no mesh with every edge in [1.2, 1.8] that keeps its
-// rim: the remeshed surface ends away from it, and the result says where and how far. A round sphere is not cut.
-TEST(Remesher, ReportsAPartOfTheInputThatWasCutOff) {
+// A disc 1.0 thick, thinner than emin = 1.2 up to 2 from its rim, loses its rim every iteration; it shrank to a
+// tetrahedron whose 6 short edges were the fewest of the run (150 iterations) and the best mesh kept it. The loop now
+// stops when the area falls below half, the best mesh is one from before, and the part cut off is reported.
+TEST(Remesher, ACollapsingSurfaceStopsTheLoopAndWhatIsCutOffIsReported) {
   TriMesh disc = make_icosphere({10.0, 4});
   for (auto v : disc.vertices()) {
     Vec3 p = disc.point(v);
-    p[2] *= 0.03;
+    p[2] *= 0.05;
     disc.set_point(v, p);
   }
+  const double area = surface_area(disc);
   const TriMesh input = disc;
   RemeshSettings settings;
-  settings.iterations = 30;
-  const RemeshResult cut = remesh(disc, settings);
-  EXPECT_TRUE(cut.cut_off);
-  EXPECT_GT(cut.farthest_input, settings.emax);
-  // The point is an input vertex on the rim, as far from the remeshed surface as reported.
-  const Vec3 q = cut.farthest_input_point;
+  settings.snap_features = false;  // 1714 input vertices of the lost rim to try, none snapped: 2.3 s
+  const RemeshResult result = remesh(disc, settings);
+  EXPECT_TRUE(result.vanished);
+  EXPECT_TRUE(result.post_processed);
+  EXPECT_LT(result.iterations, 150);
+  EXPECT_GT(disc.n_faces(), 200u);
+  EXPECT_GT(surface_area(disc), 0.45 * area);
+  EXPECT_TRUE(result.before.same_type(result.after));
+  // What is lost is reported: an input vertex on the rim, as far from the remeshed surface as said.
+  EXPECT_TRUE(result.cut_off);
+  EXPECT_GT(result.farthest_input, settings.emax);
+  const Vec3 q = result.farthest_input_point;
   EXPECT_NEAR(std::hypot(q[0], q[1]), 10.0, 1.0);
-  double nearest = std::numeric_limits<double>::infinity();
-  for (auto v : disc.vertices()) nearest = std::min(nearest, (disc.point(v) - q).norm());
-  EXPECT_GE(nearest, cut.farthest_input - 1e-9) << "no remeshed vertex is nearer than the surface";
   bool on_input = false;
   for (auto v : input.vertices()) on_input = on_input || input.point(v) == q;
   EXPECT_TRUE(on_input);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (auto v : disc.vertices()) nearest = std::min(nearest, (disc.point(v) - q).norm());
+  EXPECT_GE(nearest, result.farthest_input - 1e-9) << "no remeshed vertex is nearer than the surface";
 
   TriMesh round = sphere(3, 2.25);
   const RemeshResult kept = remesh(round, RemeshSettings{});
   ASSERT_TRUE(kept.converged);
+  EXPECT_FALSE(kept.vanished);
   EXPECT_FALSE(kept.cut_off);
-  EXPECT_LT(kept.farthest_input, 0.25 * settings.emin);
+  EXPECT_LT(kept.farthest_input, 0.3);
 }
 
 TEST(Remesher, IsDeterministic) {

@@ -3,7 +3,7 @@
 
 Each input is generated here into a fresh temporary folder (with `carbonmesh shape` or a few lines of Python:
 nothing is copied from elsewhere): a dense icosphere made small, debris beside a sphere, radial noise, flipped
-faces, two components, an ellipsoid, open sheets and tubes, a thin torus, a star prism with sharp creases, a thin
+faces, two components, a flat disc, an ellipsoid, open sheets and tubes, a thin torus, a star prism with sharp creases, a thin
 helix. Each is built at one or more --atoms values and the summary.json figures go into a markdown table.
 
     /usr/bin/python3 tools/unusual_input_table.py --build build [--out docs/reliability.md]
@@ -106,6 +106,7 @@ def make_inputs(cli, folder):
         ("icosphere with 4% radial noise", write("noisy", noisy), [2000, 20000]),
         ("icosphere, faces flipped (inward normals)", write("flipped", (v, [(a, c, b) for a, b, c in f])), [2000]),
         ("two icospheres (two components)", write("two", merged(sphere, shifted)), [20000]),
+        ("flat disc 20:1 (icosphere scaled)", write("disc", ([(x, y, 0.05 * z) for x, y, z in v], f)), [2000, 20000]),
         ("ellipsoid 10:1 (icosphere scaled)", write("ellipsoid", ([(5 * x, 0.5 * y, 0.5 * z) for x, y, z in v], f)),
          [20000]),
         ("open tube (two borders)",
@@ -138,6 +139,11 @@ def row(name, atoms_asked, summary, seconds):
     if abs(summary["atoms"] - atoms_asked) > 0.1 * atoms_asked:
         notes.append("%+.0f%% atoms, mean edge %.3f" % (100.0 * (summary["atoms"] - atoms_asked) / atoms_asked,
                                                          summary["remeshed_mesh"]["edges"]["mean"]))
+    if r.get("vanished"):
+        notes.append("loop stopped at half the area")
+    if r.get("cut_off"):
+        notes.append("cut off: an input point %.2f A (%.1f emax) from the surface" % (
+            r["farthest_input"], r["farthest_input"] / summary["scale"]["emax"]))
     if r["long"] or r["short"]:
         notes.append("%d long, %d short edges" % (r["long"], r["short"]))
     return "| %s | %d | %d | %s | %.4f-%.4f | %.0f-%.0f | %d | %d | %.1f | %s |" % (

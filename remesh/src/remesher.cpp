@@ -67,6 +67,7 @@ constexpr std::size_t kCoarseEdgesLeft = 10;  // edges outside a post-processed 
 constexpr std::size_t kCoarseEdgesLeftShare = 10000;  // it starts) that may be left, or one in this many
 constexpr int kSubdivisionSprings = 4;  // spring_relaxation steps after each midpoint subdivision
 constexpr double kRunawayFactor = 4.0;  // faces over the expected count that stop a diverging loop
+constexpr double kVanishingShare = 0.5;  // share of the start area under which a collapsing loop stops
 constexpr double kTargetMeanTolerance = 0.05;  // settings.target_mean: a mean edge this share off it is remeshed
 
 // How many edges outside the interval a post-processed coarse level (and the finer level started from it) may keep.
@@ -230,6 +231,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                  before, mesh.n_vertices());
   }
   BestMesh best(mesh, edges.long_edges + edges.short_edges, valence_stats(mesh).percent_regular);
+  const double start_area = surface_area(mesh);
 
   // The ceiling of the runaway guard below: kRunawayFactor times the faces the interval needs or the mesh has now,
   // whichever is more, plus a floor for tiny surfaces.
@@ -308,6 +310,16 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     log.nonlinear = nonlinear;
     result.log.push_back(log);
     if (s.on_iteration) s.on_iteration(log);
+    // A surface thinner than the interval near its rims (a disc 1:20 at a few thousand atoms) loses them every
+    // iteration and shrank to a tetrahedron, whose 6 short edges were the fewest of the run (the best mesh). Below
+    // half the area it started with, the loop ends and that mesh is no candidate for the best one.
+    if (surface_area(mesh) < kVanishingShare * start_area) {
+      spdlog::warn("remesh: the surface shrank to {:.0f}% of its area by iteration {} (a part thinner than the "
+                   "interval collapsing): stopped and kept the best mesh",
+                   100 * surface_area(mesh) / start_area, iteration);
+      result.vanished = true;
+      break;
+    }
     best.offer(mesh, edges.long_edges + edges.short_edges, valence.percent_regular);
     // Section 4.1's intermediate interval follows the mean edge: once splits and collapses feed each other (the
     // mean falling, the interval with it), the mesh grows without bound. Far more faces than the interval needs
@@ -321,7 +333,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     }
   }
   result.iterations = iteration;
-  if (edges.long_edges + edges.short_edges > 0) {
+  if (edges.long_edges + edges.short_edges > 0 || result.vanished) {
     mesh = best.mesh();
     post_process(mesh, s.kn, s.emin, s.emax);
     result.post_processed = true;
@@ -329,7 +341,6 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // Vertices of valence <= 4 that flips cannot repair are collapsed where that adds no edge outside (also on a
   // mesh that did not converge: a valence-4 vertex is a 4-ring in the carbon structure).
   spdlog::debug("valence defects: {} removed", remove_valence_defects(mesh, *projection_target, s.kn, s.emin, s.emax));
-  bool measured = false;  // result.farthest_input (taken from the snap's distances when it runs)
   // Once every edge is inside: valence optimisation that keeps them inside (regularize in correct_valence.cpp),
   // then the feature snap and the surface fit, which keep them inside too.
   if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
@@ -344,11 +355,6 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.snapped_vertices = snap.snapped;
       result.snap_max_before = snap.max_before;
       result.snap_max_after = snap.max_after;
-      if (snap.farthest >= 0) {
-        result.farthest_input = snap.max_after;
-        result.farthest_input_point = surface.point(TriMesh::VertexHandle(snap.farthest));
-        measured = true;
-      }
       spdlog::debug("snap to features: {} of {} input vertices farther than {:.4f} snapped in {} rounds, farthest "
                     "{:.4f} -> {:.4f}, {:.3f}s",
                     snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.max_before,
@@ -403,21 +409,18 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       r.before = result.before;
       mesh = std::move(again);
       result = std::move(r);
-      measured = false;
     }
   }
   if (s.measure_cut_off) {
-    if (!measured) {
-      const FarthestInputVertex far = farthest_input_vertex(mesh, input ? *input : *target);
-      result.farthest_input = far.distance;
-      result.farthest_input_point = far.point;
-    }
+    const FarthestInputVertex far = farthest_input_vertex(mesh, input ? *input : *target);
+    result.farthest_input = far.distance;
+    result.farthest_input_point = far.point;
     result.cut_off = result.farthest_input > s.emax;
     if (result.cut_off) {
       const Vec3& q = result.farthest_input_point;
       spdlog::warn("remesh: the input point ({:.4g}, {:.4g}, {:.4g}) is {:.4g} from the remeshed surface ({:.1f} "
-                   "emax): a part of the input was cut off (as a rule a fin thinner than about emin, {:.4g}, whose "
-                   "rim the iterations pull in)",
+                   "emax): a part of the input was cut off (as a rule a slit, fin or rim narrower than about emin, "
+                   "{:.4g}, which the iterations bridge or pull in)",
                    q[0], q[1], q[2], result.farthest_input, result.farthest_input / s.emax, s.emin);
     }
   }
@@ -443,6 +446,7 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"coarse_iterations", r.coarse_iterations},
           {"post_processed", r.post_processed},
           {"diverged", r.diverged},
+          {"vanished", r.vanished},
           {"bisected_vertices", r.bisected_vertices},
           {"long", r.long_edges},
           {"short", r.short_edges},

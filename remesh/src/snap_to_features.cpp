@@ -199,11 +199,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     result.rounds = round + 1;
     if (snapped == 0) break;
   }
-  for (std::size_t i = 0; i < distances.size(); ++i)
-    if (distances[i].face >= 0 && (result.farthest < 0 || distances[i].d > result.max_after)) {
-      result.max_after = distances[i].d;
-      result.farthest = static_cast<int>(i);
-    }
+  for (const auto& d : distances) result.max_after = std::max(result.max_after, d.d);
   result.fixed = std::move(fixed);
   return result;
 }

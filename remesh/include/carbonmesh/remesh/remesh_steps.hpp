@@ -164,7 +164,6 @@ struct SnapResult {
   int rounds = 0;
   double max_before = 0, max_after = 0;  // largest distance of an interior input vertex to the remeshed surface,
                                          // before and after this step
-  int farthest = -1;                     // the input vertex at max_after (-1: none measured)
   std::vector<char> fixed;               // per vertex of the mesh: 1 where it was snapped onto the input
 };
 // Each interior input vertex farther than `tolerance` from `mesh` (farthest first) pulls the nearest free

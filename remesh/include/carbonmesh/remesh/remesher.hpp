@@ -48,8 +48,8 @@ struct RemeshSettings {
   bool snap_features = true;
   double snap_tolerance = 0.25;  // as a fraction of emin
   // At the end, measure the input vertex farthest from the remeshed surface (RemeshResult::farthest_input) and warn
-  // when it is more than emax away: a part of the input was cut off (a fin thinner than emin, whose rim the
-  // iterations pull in). Off for the coarse levels, which the fine level measures.
+  // when it is more than emax away: a part of the input was cut off (a slit, fin or rim narrower than emin, which
+  // the iterations bridge or pull in). Off for the coarse levels, which the fine level measures.
   bool measure_cut_off = true;
   // Coarse to fine: remesh into [2^k emin, 2^k emax] first, then k times split every triangle into four at its
   // edge midpoints (halving every edge), project onto the input and continue at the next finer interval. For
@@ -77,6 +77,9 @@ struct RemeshResult {
   bool post_processed = false;
   // The loop stopped early: the mesh had grown to 4 times the faces the interval needs (or it had at the start).
   bool diverged = false;
+  // The loop stopped early: the surface area fell below half of what it started with (a surface thinner than the
+  // interval collapsing); the best mesh goes to the post-processing.
+  bool vanished = false;
   std::size_t bisected_vertices = 0;  // vertices added by the longest-edge bisection of an input with mean edge > 2 emax
   std::size_t long_edges = 0, short_edges = 0;
   double percent_regular = 0;
@@ -94,8 +97,8 @@ struct RemeshResult {
   std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
   // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit).
   double snap_max_before = 0, snap_max_after = 0;
-  // The interior input vertex farthest from the final surface (settings.measure_cut_off; from the snap's distances
-  // when it ran, before the fit): more than emax means a part of the input was cut off, and remesh() warns.
+  // The interior input vertex farthest from the final surface (settings.measure_cut_off): more than emax means a
+  // part of the input was cut off, and remesh() warns.
   double farthest_input = 0;
   Vec3 farthest_input_point{0, 0, 0};
   bool cut_off = false;  // farthest_input > emax
