@@ -7,9 +7,10 @@
 // nearest free remeshed vertices onto itself; that vertex is then held fixed while the interior vertices of
 // its kn+1 rings are relaxed (Error_b with the interval hinge, Eq 4.7) and projected back onto the input. The
 // move is kept only if the region gains no edge outside [emin, emax], no face under 3 degrees and no folded
-// face; otherwise every position is restored. Farthest input vertices first, in rounds: the distances of the
-// input vertices next to a kept move are measured again (locally) before the next round, so a ridge is
-// captured vertex by vertex.
+// face, and if every input vertex nearest one of the region's faces ends nearer than the farthest input vertex
+// was at the start of the round (so that distance never grows); otherwise every position is restored. Farthest
+// input vertices first, in rounds: the distances of the input vertices next to a kept move are measured again
+// (locally) before the next round, so a ridge is captured vertex by vertex.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -104,16 +105,39 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   std::vector<TriMesh::FaceHandle> region_faces;
   std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
   std::vector<Vec3> neighbors;
+  std::vector<Distance> distances = input_distances(mesh, input);
   auto project = [&](TriMesh::VertexHandle v) {
     neighbors.clear();
     for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
     mesh.set_point(v, target.project(mesh.point(v), neighbors));
   };
-  // Moves v onto q, relaxes and projects its neighbourhood; keeps the result if the region has no new flaw.
+  // Input vertices by their nearest face (as measured at the start of the round): first_near[f], then next_near[i].
+  std::vector<int> first_near, next_near(input.n_vertices(), -1), watched;
+  double round_max = 0;  // the farthest input vertex at the start of the round
+  auto measure = [&](int i) {
+    return local_distance(mesh, input.point(TriMesh::VertexHandle(i)),
+                          TriMesh::FaceHandle(distances[static_cast<std::size_t>(i)].face), 2, search, around)
+        .d;
+  };
+  // After a move: whether every watched input vertex is nearer than `limit`.
+  auto watched_within = [&](double limit) {
+    for (const int i : watched)
+      if (measure(i) >= limit) return false;
+    return true;
+  };
+  // Moves v onto q, relaxes and projects its neighbourhood; keeps the result if the region has no new flaw and the
+  // input vertices nearest its faces all end nearer than the farthest input vertex at the start of the round
+  // (without this check the snap raised the farthest input vertex of spheres with 4% noise in 10 of 16 seeds; a
+  // stricter one, nearer than the farthest of the watched vertices, lowered armadillo's Hausdorff maximum 0.589 ->
+  // 0.537 but raised bunny's 0.798 -> 0.850 and its RMS, 2M samples).
   auto try_snap = [&](TriMesh::VertexHandle v, const Vec3& q) {
     local.collect(mesh, v, kn + 3, region);  // every vertex the relaxation moves, with their stars
     const std::size_t flaws_before = local.flaws(mesh, region);
     local.faces(mesh, region, region_faces);  // each once: the fold check below runs every pass
+    watched.clear();
+    for (auto f : region_faces)
+      for (int i = first_near[static_cast<std::size_t>(f.idx())]; i >= 0; i = next_near[static_cast<std::size_t>(i)])
+        watched.push_back(i);
     normals.clear();
     for (auto f : region_faces) normals.emplace_back(f, geometry::face_normal(mesh, f));
     saved.assign(1, {v, mesh.point(v)});
@@ -131,7 +155,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
       bool folded = false;
       for (const auto& [f, before] : normals)
         folded = folded || OpenMesh::dot(before, geometry::face_normal(mesh, f)) < geometry::kMaxNormalTurnCos;
-      if (!folded && local.flaws(mesh, region) <= flaws_before) {
+      if (!folded && local.flaws(mesh, region) <= flaws_before && watched_within(round_max)) {
         for (auto w : region) touched[static_cast<std::size_t>(w.idx())] = 1;
         return true;
       }
@@ -141,7 +165,6 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     return false;
   };
 
-  std::vector<Distance> distances = input_distances(mesh, input);
   std::vector<int> candidates;
   std::vector<std::pair<double, int>> choices;
   for (const auto& d : distances) result.max_before = std::max(result.max_before, d.d);
@@ -155,6 +178,14 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
       return da != db ? da > db : a < b;
     });
     std::fill(touched.begin(), touched.end(), 0);
+    round_max = 0;
+    for (const auto& d : distances) round_max = std::max(round_max, d.d);
+    first_near.assign(mesh.n_faces(), -1);
+    for (std::size_t i = 0; i < distances.size(); ++i)
+      if (distances[i].face >= 0) {
+        next_near[i] = first_near[static_cast<std::size_t>(distances[i].face)];
+        first_near[static_cast<std::size_t>(distances[i].face)] = static_cast<int>(i);
+      }
     std::size_t snapped = 0;
     for (const int c : candidates) {
       const Vec3 q = input.point(TriMesh::VertexHandle(c));

@@ -169,7 +169,9 @@ struct SnapResult {
 // Each interior input vertex farther than `tolerance` from `mesh` (farthest first) pulls the nearest free
 // interior vertex of `mesh` onto itself; the interior vertices of its kn+1 rings are relaxed (Error_b with
 // the interval hinge) and projected onto `target`. Kept only if that adds no edge outside [emin, emax], no
-// face under 3 degrees and no folded face; with every edge inside before they all stay inside.
+// face under 3 degrees and no folded face, and leaves the input vertices nearest the moved faces nearer than the
+// farthest input vertex was (the farthest distance never grows); with every edge inside before they all stay
+// inside.
 SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                             double emax, double tolerance);
 
