@@ -59,12 +59,7 @@ TEST(MidpointSubdivision, HalvesEveryEdgeAndKeepsTheSurfaceType) {
 // triangles' shapes in each patch of four; springs of the mean edge even the edges out, a border (one face
 // removed) stays where it was, and the result is the same for the same input.
 TEST(SpringRelaxation, EvensOutTheEdgesOfASubdividedMeshAndKeepsItsBorder) {
-  TriMesh mesh = make_icosphere({10.0, 2});
-  for (auto v : mesh.vertices()) {
-    Vec3 p = mesh.point(v);
-    p[0] *= 1.8;
-    mesh.set_point(v, p);
-  }
+  TriMesh mesh = test::stretched(make_icosphere({10.0, 2}), 0, 1.8);
   mesh.delete_face(*mesh.faces().begin(), true);
   mesh.garbage_collection();
   ASSERT_TRUE(midpoint_subdivision(mesh));

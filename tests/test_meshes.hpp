@@ -14,6 +14,16 @@ inline TriMesh scaled(TriMesh mesh, double mean) {
   return mesh;
 }
 
+// Scales coordinate `axis` (0 x, 1 y, 2 z) of every vertex by `factor` (an ellipsoid or a disc from a sphere).
+inline TriMesh stretched(TriMesh mesh, int axis, double factor) {
+  for (auto v : mesh.vertices()) {
+    Vec3 p = mesh.point(v);
+    p[axis] *= factor;
+    mesh.set_point(v, p);
+  }
+  return mesh;
+}
+
 // Adds a copy of `from`, scaled by `scale` about the origin and then shifted by `shift`, to `to` as another
 // component.
 inline void append_copy(TriMesh& to, const TriMesh& from, const Vec3& shift, double scale = 1.0) {

@@ -394,12 +394,7 @@ TEST(SnapToFeatures, BringsACubeCloserAndKeepsEveryEdgeInside) {
 // tetrahedron whose 6 short edges were the fewest of the run (150 iterations) and the best mesh kept it. The loop now
 // stops when the area falls below half, the best mesh is one from before, and the part cut off is reported.
 TEST(Remesher, ACollapsingSurfaceStopsTheLoopAndWhatIsCutOffIsReported) {
-  TriMesh disc = make_icosphere({10.0, 4});
-  for (auto v : disc.vertices()) {
-    Vec3 p = disc.point(v);
-    p[2] *= 0.05;
-    disc.set_point(v, p);
-  }
+  TriMesh disc = test::stretched(make_icosphere({10.0, 4}), 2, 0.05);
   const double area = surface_area(disc);
   const TriMesh input = disc;
   RemeshSettings settings;

@@ -313,10 +313,10 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // A surface thinner than the interval near its rims (a disc 1:20 at a few thousand atoms) loses them every
     // iteration and shrank to a tetrahedron, whose 6 short edges were the fewest of the run (the best mesh). Below
     // half the area it started with, the loop ends and that mesh is no candidate for the best one.
-    if (surface_area(mesh) < kVanishingShare * start_area) {
+    if (const double area = surface_area(mesh); area < kVanishingShare * start_area) {
       spdlog::warn("remesh: the surface shrank to {:.0f}% of its area by iteration {} (a part thinner than the "
                    "interval collapsing): stopped and kept the best mesh",
-                   100 * surface_area(mesh) / start_area, iteration);
+                   100 * area / start_area, iteration);
       result.vanished = true;
       break;
     }
