@@ -140,7 +140,7 @@ def row(name, atoms_asked, summary, seconds):
         notes.append("%+.0f%% atoms, mean edge %.3f" % (100.0 * (summary["atoms"] - atoms_asked) / atoms_asked,
                                                          summary["remeshed_mesh"]["edges"]["mean"]))
     if r.get("vanished"):
-        notes.append("loop stopped at half the area")
+        notes.append("loop stopped: surface eroding below half its area")
     if r.get("cut_off"):
         notes.append("cut off: an input point %.2f A (%.1f emax) from the surface" % (
             r["farthest_input"], r["farthest_input"] / summary["scale"]["emax"]))

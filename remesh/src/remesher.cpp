@@ -67,7 +67,9 @@ constexpr std::size_t kCoarseEdgesLeft = 10;  // edges outside a post-processed 
 constexpr std::size_t kCoarseEdgesLeftShare = 10000;  // it starts) that may be left, or one in this many
 constexpr int kSubdivisionSprings = 4;  // spring_relaxation steps after each midpoint subdivision
 constexpr double kRunawayFactor = 4.0;  // faces over the expected count that stop a diverging loop
-constexpr double kVanishingShare = 0.5;  // share of the start area under which a collapsing loop stops
+constexpr double kVanishingShare = 0.5;  // a loop that erodes the surface stops below this share of the start area
+constexpr int kErosionWindow = 10;       // ... if the area also fell by more than kErosionDrop over this many
+constexpr double kErosionDrop = 0.15;    // iterations (after the first 2 windows, where noise is bridged)
 constexpr double kTargetMeanTolerance = 0.05;  // settings.target_mean: a mean edge this share off it is remeshed
 
 // How many edges outside the interval a post-processed coarse level (and the finer level started from it) may keep.
@@ -231,7 +233,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                  before, mesh.n_vertices());
   }
   BestMesh best(mesh, edges.long_edges + edges.short_edges, valence_stats(mesh).percent_regular);
-  const double start_area = surface_area(mesh);
+  std::vector<double> areas{surface_area(mesh)};  // areas[i]: after iteration i (0: the start)
 
   // The ceiling of the runaway guard below: kRunawayFactor times the faces the interval needs or the mesh has now,
   // whichever is more, plus a floor for tiny surfaces.
@@ -311,12 +313,18 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     result.log.push_back(log);
     if (s.on_iteration) s.on_iteration(log);
     // A surface thinner than the interval near its rims (a disc 1:20 at a few thousand atoms) loses them every
-    // iteration and shrank to a tetrahedron, whose 6 short edges were the fewest of the run (the best mesh). Below
-    // half the area it started with, the loop ends and that mesh is no candidate for the best one.
-    if (const double area = surface_area(mesh); area < kVanishingShare * start_area) {
-      spdlog::warn("remesh: the surface shrank to {:.0f}% of its area by iteration {} (a part thinner than the "
-                   "interval collapsing): stopped and kept the best mesh",
-                   100 * area / start_area, iteration);
+    // iteration and shrank to a tetrahedron, whose 6 short edges were the fewest of the run (the best mesh): its
+    // area falls steadily, by 1-2% of the start each iteration. Bridged noise also takes area (a sphere with 15%
+    // radial noise keeps 22-45%), but in the first iterations only. Below half the start area and still falling by
+    // more than kErosionDrop per kErosionWindow iterations, the loop ends and that mesh is no candidate for the best.
+    const double area = surface_area(mesh);
+    areas.push_back(area);
+    if (iteration >= 2 * kErosionWindow && area < kVanishingShare * areas[0] &&
+        area < (1 - kErosionDrop) * areas[static_cast<std::size_t>(iteration - kErosionWindow)]) {
+      spdlog::warn("remesh: the surface shrank to {:.0f}% of its area by iteration {}, {:.0f}% in the last {} (a part "
+                   "thinner than the interval eroding): stopped and kept the best mesh",
+                   100 * area / areas[0], iteration,
+                   100 * (1 - area / areas[static_cast<std::size_t>(iteration - kErosionWindow)]), kErosionWindow);
       result.vanished = true;
       break;
     }

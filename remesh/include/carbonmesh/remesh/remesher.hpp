@@ -77,8 +77,8 @@ struct RemeshResult {
   bool post_processed = false;
   // The loop stopped early: the mesh had grown to 4 times the faces the interval needs (or it had at the start).
   bool diverged = false;
-  // The loop stopped early: the surface area fell below half of what it started with (a surface thinner than the
-  // interval collapsing); the best mesh goes to the post-processing.
+  // The loop stopped early: the surface area was below half of what it started with and still falling by more than
+  // 15% per 10 iterations (a surface thinner than the interval eroding); the best mesh goes to the post-processing.
   bool vanished = false;
   std::size_t bisected_vertices = 0;  // vertices added by the longest-edge bisection of an input with mean edge > 2 emax
   std::size_t long_edges = 0, short_edges = 0;
