@@ -319,12 +319,12 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // more than kErosionDrop per kErosionWindow iterations, the loop ends and that mesh is no candidate for the best.
     const double area = surface_area(mesh);
     areas.push_back(area);
-    if (iteration >= 2 * kErosionWindow && area < kVanishingShare * areas[0] &&
-        area < (1 - kErosionDrop) * areas[static_cast<std::size_t>(iteration - kErosionWindow)]) {
+    const double earlier =  // the area kErosionWindow iterations ago, once 2 windows have passed (0 before)
+        iteration >= 2 * kErosionWindow ? areas[static_cast<std::size_t>(iteration - kErosionWindow)] : 0.0;
+    if (area < kVanishingShare * areas[0] && area < (1 - kErosionDrop) * earlier) {
       spdlog::warn("remesh: the surface shrank to {:.0f}% of its area by iteration {}, {:.0f}% in the last {} (a part "
                    "thinner than the interval eroding): stopped and kept the best mesh",
-                   100 * area / areas[0], iteration,
-                   100 * (1 - area / areas[static_cast<std::size_t>(iteration - kErosionWindow)]), kErosionWindow);
+                   100 * area / areas[0], iteration, 100 * (1 - area / earlier), kErosionWindow);
       result.vanished = true;
       break;
     }
