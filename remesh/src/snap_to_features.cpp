@@ -10,7 +10,8 @@
 // face, and if every input vertex nearest one of the region's faces ends nearer than the farthest input vertex
 // was at the start of the round (so that distance never grows); otherwise every position is restored. Farthest
 // input vertices first, in rounds: the distances of the input vertices next to a kept move are measured again
-// (locally) before the next round, so a ridge is captured vertex by vertex.
+// (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move failed are
+// tried again in a new neighbourhood.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -222,9 +223,11 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
       bool stale = false;
       for (auto w : mesh.fv_range(TriMesh::FaceHandle(d.face)))
         stale = stale || touched[static_cast<std::size_t>(w.idx())];
-      if (stale)
+      if (stale) {
         d = local_distance(mesh, input.point(TriMesh::VertexHandle(static_cast<int>(i))), TriMesh::FaceHandle(d.face),
                            3, search, around);
+        tried[i] = 0;  // a new neighbourhood: may be tried again
+      }
     }
     result.snapped += snapped;
     result.rounds = round + 1;
