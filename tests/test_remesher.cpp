@@ -464,6 +464,61 @@ TEST(SnapToFeatures, NeverMovesTheSurfaceFartherFromTheInput) {
   EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
 }
 
+// A hexagonal bipyramid (equator radius 1.5, poles at +-0.7; edges 1.5 and 1.66) whose equator edge e0-e1 is
+// flipped to the axis (1.4 long, inside [1.2, 1.8]): the two faces through the axis lie 0.41 inside the input.
+// The data-dependent flips turn the diagonal back along the ridge, and leave the input itself as it is.
+TriMesh bipyramid() {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> e;
+  for (int k = 0; k < 6; ++k)
+    e.push_back(mesh.add_vertex(Vec3(1.5 * std::cos(k * M_PI / 3), 1.5 * std::sin(k * M_PI / 3), 0.0)));
+  const auto north = mesh.add_vertex(Vec3(0, 0, 0.7)), south = mesh.add_vertex(Vec3(0, 0, -0.7));
+  for (int k = 0; k < 6; ++k) {
+    mesh.add_face(e[static_cast<std::size_t>(k)], e[static_cast<std::size_t>((k + 1) % 6)], north);
+    mesh.add_face(e[static_cast<std::size_t>((k + 1) % 6)], e[static_cast<std::size_t>(k)], south);
+  }
+  return mesh;
+}
+
+TEST(DataDependentFlips, TurnADiagonalAcrossARidgeBackAlongIt) {
+  const TriMesh input = bipyramid();
+  TriMesh mesh = input;
+  const auto h = mesh.find_halfedge(TriMesh::VertexHandle(0), TriMesh::VertexHandle(1));
+  ASSERT_TRUE(h.is_valid() && mesh.is_flip_ok(mesh.edge_handle(h)));
+  mesh.flip(mesh.edge_handle(h));
+  ASSERT_TRUE(mesh.find_halfedge(TriMesh::VertexHandle(6), TriMesh::VertexHandle(7)).is_valid());
+  HausdorffSettings hs;
+  hs.samples = 20000;
+  ASSERT_GT(hausdorff_distance(mesh, input, hs).max, 0.35);
+
+  const DataDependentFlips flips = data_dependent_flips(mesh, input, 1.2, 1.8, 0.3);
+  EXPECT_EQ(flips.flips, 1u);
+  EXPECT_GT(flips.max_before, 0.35);
+  EXPECT_LT(flips.max_after, 1e-9);
+  EXPECT_TRUE(mesh.find_halfedge(TriMesh::VertexHandle(0), TriMesh::VertexHandle(1)).is_valid());
+  EXPECT_LT(hausdorff_distance(mesh, input, hs).max, 1e-9);
+  const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+
+  TriMesh unchanged = input;
+  EXPECT_EQ(data_dependent_flips(unchanged, input, 1.2, 1.8, 0.3).flips, 0u);
+}
+
+// The flip is refused where the edge it would make is outside the interval. Poles at +-1.0 (pole edges 1.80), the
+// equator edge e0-e1 (1.5) flipped to the axis (2.0): turning it back is kept in [1.2, 2.2] and refused in [1.55,
+// 2.2], where e0-e1 would be short.
+TEST(DataDependentFlips, NeverFlipToAnEdgeOutsideTheInterval) {
+  TriMesh input = bipyramid();
+  input.set_point(TriMesh::VertexHandle(6), Vec3(0, 0, 1.0));
+  input.set_point(TriMesh::VertexHandle(7), Vec3(0, 0, -1.0));
+  TriMesh mesh = input;
+  mesh.flip(mesh.edge_handle(mesh.find_halfedge(TriMesh::VertexHandle(0), TriMesh::VertexHandle(1))));
+  TriMesh wide = mesh;
+  EXPECT_EQ(data_dependent_flips(wide, input, 1.2, 2.2, 0.3).flips, 1u);
+  EXPECT_EQ(data_dependent_flips(mesh, input, 1.55, 2.2, 0.3).flips, 0u);
+  EXPECT_TRUE(mesh.find_halfedge(TriMesh::VertexHandle(6), TriMesh::VertexHandle(7)).is_valid());
+}
+
 TEST(Remesher, IsDeterministic) {
   TriMesh a = torus(0.0, 2.25), b = torus(0.0, 2.25);
   RemeshSettings settings;

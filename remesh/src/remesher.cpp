@@ -147,7 +147,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // A coarse level converges within kCoarseIterations where it is a good start (fertility at 10^6 atoms: 16);
     // one that has not by then is given up.
     coarse.iterations = std::min(s.iterations, kCoarseIterations);
-    coarse.fit_surface = coarse.snap_features = coarse.measure_cut_off = false;
+    coarse.fit_surface = coarse.snap_features = coarse.flip_toward_input = coarse.measure_cut_off = false;
     coarse.on_iteration = [&](const IterationLog& l) {
       IterationLog shifted = l;
       ++shifted.level;
@@ -368,6 +368,14 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                     snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.max_before,
                     snap.max_after, seconds() - t0);
     }
+    if (s.flip_toward_input) {
+      const DataDependentFlips flips =
+          data_dependent_flips(mesh, input ? *input : *target, s.emin, s.emax, s.snap_tolerance * s.emin);
+      result.data_dependent_flips = flips.flips;
+      spdlog::debug("data-dependent flips: {} of {} edges near faces farther than {:.4f}, farthest face {:.4f} -> "
+                    "{:.4f}",
+                    flips.flips, flips.candidates, s.snap_tolerance * s.emin, flips.max_before, flips.max_after);
+    }
     if (s.fit_surface) {
       const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
       const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax, {}, snapped);
@@ -473,6 +481,7 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"snapped_vertices", r.snapped_vertices},
           {"snap_max_before", r.snap_max_before},
           {"snap_max_after", r.snap_max_after},
+          {"data_dependent_flips", r.data_dependent_flips},
           {"farthest_input", r.farthest_input},
           {"farthest_input_point", {r.farthest_input_point[0], r.farthest_input_point[1], r.farthest_input_point[2]}},
           {"cut_off", r.cut_off},

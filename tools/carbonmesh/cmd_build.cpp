@@ -180,6 +180,7 @@ int run_build(BuildOptions& o) {
   // move the starting points, at the cost of closest-point queries on every face.
   o.remesh.fit_surface = false;
   o.remesh.snap_features = false;  // likewise, and its distance trees over the whole mesh cost most at 1M atoms
+  o.remesh.flip_toward_input = false;  // likewise (and a flip may cost a hexagon)
   o.remesh.emax = scaled.emax;
   // The mean edge sets the atom count: an input already inside the interval is remeshed unless its mean is near a.
   // Not the built-in sphere, whose edges are centred in the interval and whose pentagons the remesher would move.

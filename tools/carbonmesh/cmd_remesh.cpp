@@ -33,7 +33,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
     int iterations = 150, kl = 2, kn = 2, p = 0, coarse_levels = 0;
     double l = 0.5;
     ParametrizationWeights weights = ParametrizationWeights::MeanValue;
-    bool json = false, repair = false, no_fit = false, no_snap = false;
+    bool json = false, repair = false, no_fit = false, no_snap = false, no_flips = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("remesh", "remesh so that every edge length lies in [emin, emax] (Algorithm 1)");
@@ -58,6 +58,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-fit", opt->no_fit, "skip the final least-squares fit to the input (every vertex stays on the input, as in the dissertation; default: fit)");
   cmd->add_flag("--no-snap", opt->no_snap, "skip moving vertices onto input points the remeshed surface cuts off (ear rims, tips, grooves; default: snap)");
+  cmd->add_flag("--no-flips", opt->no_flips, "skip flipping edges whose faces bridge a groove or cut a ridge of the input where the other diagonal follows it (default: flip)");
   cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
   cmd->add_flag("--json", opt->json, "final summary as one JSON object instead of text");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
@@ -86,6 +87,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
       settings.weights = opt->weights;
       settings.fit_surface = !opt->no_fit;
       settings.snap_features = !opt->no_snap;
+      settings.flip_toward_input = !opt->no_flips;
       settings.coarse_levels = opt->coarse_levels;
       std::ostringstream csv;
       csv << "iteration,long,short,percent_regular,mean,std,seconds,nonlinear,level\n";
@@ -132,6 +134,9 @@ void add_remesh_command(CLI::App& app, Action& action) {
           std::cout << fmt::format("feature snap: {} vertices moved onto the input, farthest input vertex {:.4f} -> "
                                    "{:.4f}\n",
                                    result.snapped_vertices, result.snap_max_before, result.snap_max_after);
+        if (settings.flip_toward_input && result.converged)
+          std::cout << fmt::format("data-dependent flips: {} edges flipped toward the input\n",
+                                   result.data_dependent_flips);
         if (result.fitted)
           std::cout << fmt::format("surface fit: RMS distance to the input {:.4f} -> {:.4f}\n", result.fit_rms_before,
                                    result.fit_rms_after);

@@ -184,6 +184,21 @@ struct FarthestInputVertex {
 // than an edge, it shows a part of the input that the remeshed surface cut off.
 FarthestInputVertex farthest_input_vertex(const TriMesh& mesh, const TriMesh& input);
 
+// ---- data_dependent_flips.cpp ------------------------------------------------------------------------------
+
+struct DataDependentFlips {
+  std::size_t candidates = 0;  // edges of faces farther than the tolerance from the input
+  std::size_t flips = 0;
+  double max_before = 0, max_after = 0;  // the largest sampled distance of a face to the input, before and after
+};
+// Flips the diagonal of the quads around faces farther than `tolerance` from `input` (farthest first) where the two
+// new faces are nearer the input by 10% at least, the new edge lies in [emin, emax], no new angle is under 3
+// degrees, no new face turns against an old one, and the valences stay within one of the ideal (6 inside, 4 on a
+// border) with E_val (Eq 4.2) up by 2 at most. A pair of faces bridging a groove or cutting a ridge is replaced by
+// the pair along it.
+DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, double emin, double emax,
+                                        double tolerance);
+
 // ---- spatial_order.cpp ----------------------------------------------------------------------------------
 
 // Rebuilds `mesh` with its vertices in Morton order of their positions and its faces by first vertex, so

@@ -47,6 +47,10 @@ struct RemeshSettings {
   // surface (snap_to_features in remesh_steps.hpp: ear rims, cone tips, grooves), every edge kept inside.
   bool snap_features = true;
   double snap_tolerance = 0.25;  // as a fraction of emin
+  // After the snap, flip the diagonals of quads whose faces lie farther than snap_tolerance * emin from the input
+  // where the other diagonal follows it (data_dependent_flips in remesh_steps.hpp: grooves, ridges), every edge
+  // kept inside and no vertex more than one off its ideal valence.
+  bool flip_toward_input = true;
   // At the end, measure the input vertex farthest from the remeshed surface (RemeshResult::farthest_input) and warn
   // when it is more than emax away: a part of the input was cut off (a slit, fin or rim narrower than emin, which
   // the iterations bridge or pull in). Off for the coarse levels, which the fine level measures.
@@ -97,6 +101,7 @@ struct RemeshResult {
   std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
   // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit).
   double snap_max_before = 0, snap_max_after = 0;
+  std::size_t data_dependent_flips = 0;  // flips toward the input (settings.flip_toward_input)
   // The interior input vertex farthest from the final surface (settings.measure_cut_off): more than emax means a
   // part of the input was cut off, and remesh() warns.
   double farthest_input = 0;
