@@ -26,16 +26,7 @@ int sq(int x) { return x * x; }
 // A flip is kept only if the smallest angle does not drop below half of its value (section 3.5.3) and
 // neither new triangle turns against the old ones (no fold).
 bool flip_geometry_ok(const TriMesh& mesh, const FlipQuad& q) {
-  const Vec3 a = mesh.point(q.a), b = mesh.point(q.b), c = mesh.point(q.c), d = mesh.point(q.d);
-  const double pre = std::min(geometry::min_angle(a, b, c), geometry::min_angle(b, a, d));
-  const double post = std::min(geometry::min_angle(a, d, c), geometry::min_angle(b, c, d));
-  if (post < 0.5 * pre) return false;
-  const Vec3 n1 = geometry::triangle_normal(a, b, c), n2 = geometry::triangle_normal(b, a, d);
-  const Vec3 m1 = geometry::triangle_normal(a, d, c), m2 = geometry::triangle_normal(b, c, d);
-  for (const Vec3& n : {n1, n2})
-    for (const Vec3& mm : {m1, m2})
-      if (OpenMesh::dot(n, mm) <= 0) return false;
-  return true;
+  return geometry::flip_keeps_shape(mesh.point(q.a), mesh.point(q.b), mesh.point(q.c), mesh.point(q.d));
 }
 
 }  // namespace

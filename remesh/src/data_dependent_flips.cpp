@@ -57,17 +57,10 @@ bool valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHan
   return after <= before + kValenceSlack;
 }
 
-// Angles and orientation of the two new faces (a, d, c) and (b, c, d) against the old (a, b, c) and (b, a, d).
+// The valence flips' shape test, and no new angle under 3 degrees.
 bool geometry_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const double pre = std::min(geometry::min_angle(a, b, c), geometry::min_angle(b, a, d));
-  const double post = std::min(geometry::min_angle(a, d, c), geometry::min_angle(b, c, d));
-  if (post < geometry::kMinAngle || post < 0.5 * pre) return false;
-  const Vec3 n1 = geometry::triangle_normal(a, b, c), n2 = geometry::triangle_normal(b, a, d);
-  const Vec3 m1 = geometry::triangle_normal(a, d, c), m2 = geometry::triangle_normal(b, c, d);
-  for (const Vec3& n : {n1, n2})
-    for (const Vec3& m : {m1, m2})
-      if (OpenMesh::dot(n, m) <= 0) return false;  // as the valence flips (flip_geometry_ok)
-  return true;
+  return geometry::flip_keeps_shape(a, b, c, d) &&
+         std::min(geometry::min_angle(a, d, c), geometry::min_angle(b, c, d)) >= geometry::kMinAngle;
 }
 
 }  // namespace

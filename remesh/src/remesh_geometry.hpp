@@ -32,6 +32,21 @@ inline double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
 }
 
+// Whether flipping edge a-b of the faces (a, b, c) and (b, a, d) to c-d keeps their shape (section 3.5.3): the
+// smallest angle of the new faces (a, d, c) and (b, c, d) is at least half of the old one, and neither new face
+// turns against an old one (no fold).
+inline bool flip_keeps_shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double pre = std::min(min_angle(a, b, c), min_angle(b, a, d));
+  const double post = std::min(min_angle(a, d, c), min_angle(b, c, d));
+  if (post < 0.5 * pre) return false;
+  const Vec3 n1 = triangle_normal(a, b, c), n2 = triangle_normal(b, a, d);
+  const Vec3 m1 = triangle_normal(a, d, c), m2 = triangle_normal(b, c, d);
+  for (const Vec3& n : {n1, n2})
+    for (const Vec3& m : {m1, m2})
+      if (OpenMesh::dot(n, m) <= 0) return false;
+  return true;
+}
+
 // Corner positions of a face.
 inline void face_points(const TriMesh& mesh, TriMesh::FaceHandle f, Vec3& a, Vec3& b, Vec3& c) {
   auto h = mesh.halfedge_handle(f);
