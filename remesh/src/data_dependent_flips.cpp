@@ -49,8 +49,7 @@ bool valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHan
   for (const auto& [v, change] : {std::pair{a, -1}, std::pair{b, -1}, std::pair{c, 1}, std::pair{d, 1}}) {
     const int off = static_cast<int>(mesh.valence(v)) - ideal_valence(mesh, v);
     const int off_after = off + change;
-    if (std::abs(off_after) > std::max(1, std::abs(off))) return false;
-    if (static_cast<int>(mesh.valence(v)) + change < 3) return false;
+    if (std::abs(off_after) > std::max(1, std::abs(off))) return false;  // (so no valence under 3 either)
     before += off * off;
     after += off_after * off_after;
   }
