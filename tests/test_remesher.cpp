@@ -364,6 +364,25 @@ TriMesh grid_cube(double side, int n) {
   return mesh;
 }
 
+// A cube's 90-degree edges keep stirring up a few dozen edges of the interval (the projection shortens every edge
+// across them) and the low-pass phase stalls at about 1% long+short, above l = 0.5%: it went on for about 70
+// iterations before a chance low let the nonlinear optimizer in. On a stall the share that starts it is doubled, so the
+// optimizer takes over at 1% and the loop ends with every edge inside.
+TEST(Remesher, AStalledLowPassPhaseHandsOverToTheNonlinearOptimizer) {
+  TriMesh cube = grid_cube(19.77, 10);  // mean edge 2.25, the seed protocol's
+  RemeshSettings settings;
+  settings.snap_features = settings.fit_surface = settings.flip_toward_input = false;
+  const RemeshResult result = remesh(cube, settings);
+  ASSERT_TRUE(result.converged);
+  EXPECT_EQ(result.long_edges + result.short_edges, 0u);
+  ASSERT_FALSE(result.log.empty());
+  EXPECT_GT(result.log.back().l, settings.l);  // raised
+  EXPECT_LE(result.log.back().l, 4.0);
+  EXPECT_TRUE(result.log.back().nonlinear);
+  EXPECT_LE(result.iterations, 50);  // 72 without the raise
+  EXPECT_TRUE(topology(cube).same_type(result.before));
+}
+
 // The feature snap on a cube: vertices are put on corner and edge points that the remeshed triangles cut off.
 // The RMS distance to the input falls clearly (measured 0.1615 -> 0.1234), the farthest input vertex does not
 // get farther, and every edge stays inside. The largest sampled distance does not fall (0.964 -> 1.017): the

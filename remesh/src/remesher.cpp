@@ -60,6 +60,7 @@ void check_size(const TriMesh& mesh, const RemeshSettings& s) {
 }
 
 constexpr int kStallIterations = 5;
+constexpr double kMaxNonlinearPercent = 4.0;  // the raised l stops here
 constexpr double kReorderShare = 0.2;
 constexpr int kCoarseIterations = 50;
 constexpr std::size_t kCoarseCheckSamples = 20000;  // input samples that check a post-processed coarse level
@@ -243,6 +244,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   std::size_t churn = 0;
   std::size_t lowest = std::numeric_limits<std::size_t>::max();
   int stalled = 0;
+  double l = s.l;  // the share of long+short edges (percent) that starts the nonlinear phase; raised on a stall
   // A mesh with every edge inside but vertices two or more off their ideal valence (the valence-4/8 grid that the
   // bisection above makes of a cube's faces) gets one ordinary iteration anyway: flips and the low-pass filter,
   // which the interval test alone would skip. Then the loop goes on while edges are outside.
@@ -270,8 +272,16 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     if (kick) {
       lowest = std::numeric_limits<std::size_t>::max();
       stalled = 0;
+      // A low-pass phase that stalls above l (noise or creases at the edge scale keep stirring up the same few
+      // dozen edges) hands over to the nonlinear optimizer at twice the share.
+      if (troubling_percent(edges) > l && l < kMaxNonlinearPercent) {
+        l = std::min(2 * l, kMaxNonlinearPercent);
+        spdlog::debug("iteration {}: no new low of long+short edges in {} iterations ({:.2f}%): the nonlinear "
+                      "optimizer takes over from {:.2f}%",
+                      iteration + 1, kStallIterations, troubling_percent(edges), l);
+      }
     }
-    const bool nonlinear_phase = troubling_percent(edges) <= s.l && !kick && !restart;
+    const bool nonlinear_phase = troubling_percent(edges) <= l && !kick && !restart;
     IntermediateInterval step = intermediate_interval(edges.mean, s.emin, s.emax);
     if (nonlinear_phase) step = {s.emin - 0.25 * (s.emax - s.emin), s.emax + 0.25 * (s.emax - s.emin)};
     const StellarResult stellar = stellar_operations(mesh, step.emin, step.emax, m);
@@ -287,7 +297,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     spdlog::debug("iteration {}: interval [{:.4f}, {:.4f}], {} splits, {} collapses, {} flips", iteration + 1,
                   step.emin, step.emax, stellar.splits, stellar.collapses, flips);
     edges = edge_stats(mesh, interval);
-    const bool nonlinear = troubling_percent(edges) <= s.l && !restart;
+    const bool nonlinear = troubling_percent(edges) <= l && !restart;
     const double t_smooth = seconds();
     if (nonlinear)
       nonlinear_optimizer(mesh, s.kn, s.emin, s.emax);
@@ -310,6 +320,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     log.std = edges.std;
     log.seconds = seconds();
     log.nonlinear = nonlinear;
+    log.l = l;
     result.log.push_back(log);
     if (s.on_iteration) s.on_iteration(log);
     // A surface thinner than the interval near its rims (a disc 1:20 at a few thousand atoms) loses them every
@@ -363,9 +374,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.snapped_vertices = snap.snapped;
       result.snap_max_before = snap.max_before;
       result.snap_max_after = snap.max_after;
-      spdlog::debug("snap to features: {} of {} input vertices farther than {:.4f} snapped in {} rounds, farthest "
-                    "{:.4f} -> {:.4f}, {:.3f}s",
-                    snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.max_before,
+      spdlog::debug("snap to features: {} of {} input vertices farther than {:.4f} snapped in {} rounds ({} moves "
+                    "tried), farthest {:.4f} -> {:.4f}, {:.3f}s",
+                    snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.tries, snap.max_before,
                     snap.max_after, seconds() - t0);
     }
     if (s.flip_toward_input) {
@@ -455,6 +466,7 @@ nlohmann::json to_json(const RemeshResult& r) {
                    {"std", l.std},
                    {"seconds", l.seconds},
                    {"nonlinear", l.nonlinear},
+                   {"l", l.l},
                    {"level", l.level}});
   nlohmann::json j = {{"converged", r.converged},
           {"iterations", r.iterations},

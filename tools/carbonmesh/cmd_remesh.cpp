@@ -45,7 +45,9 @@ void add_remesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--kl", opt->kl, "star number of the low-pass filter")->default_val(2)->check(CLI::PositiveNumber);
   cmd->add_option("--kn", opt->kn, "star number of the nonlinear optimizer")->default_val(2)->check(CLI::PositiveNumber);
   cmd->add_option("--p", opt->p, "replace the projection mesh every p iterations (0: never)")->default_val(0)->check(CLI::NonNegativeNumber);
-  cmd->add_option("--l", opt->l, "percent of long+short edges at or below which the nonlinear optimizer runs")
+  cmd->add_option("--l", opt->l,
+                  "percent of long+short edges at or below which the nonlinear optimizer runs (doubled, up to 4, "
+                  "when the low-pass phase finds no new low in 5 iterations)")
       ->default_val(0.5)->check(CLI::NonNegativeNumber);
   const std::map<std::string, ParametrizationWeights> weights{{"mean-value", ParametrizationWeights::MeanValue},
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};
@@ -90,13 +92,13 @@ void add_remesh_command(CLI::App& app, Action& action) {
       settings.flip_toward_input = !opt->no_flips;
       settings.coarse_levels = opt->coarse_levels;
       std::ostringstream csv;
-      csv << "iteration,long,short,percent_regular,mean,std,seconds,nonlinear,level\n";
+      csv << "iteration,long,short,percent_regular,mean,std,seconds,nonlinear,level,l\n";
       settings.on_iteration = [&csv](const IterationLog& l) {
         spdlog::info("{}iteration {:3d}  long {:6d}  short {:6d}  regular {:6.2f}%  mean {:.4f}  std {:.4f}  {:.2f}s{}",
                      l.level > 0 ? fmt::format("level {} ", l.level) : "", l.iteration, l.long_edges, l.short_edges, l.percent_regular, l.mean, l.std, l.seconds,
                      l.nonlinear ? "  (nonlinear)" : "");
-        csv << fmt::format("{},{},{},{:.4f},{:.6f},{:.6f},{:.3f},{},{}\n", l.iteration, l.long_edges, l.short_edges,
-                           l.percent_regular, l.mean, l.std, l.seconds, l.nonlinear ? 1 : 0, l.level);
+        csv << fmt::format("{},{},{},{:.4f},{:.6f},{:.6f},{:.3f},{},{},{}\n", l.iteration, l.long_edges, l.short_edges,
+                           l.percent_regular, l.mean, l.std, l.seconds, l.nonlinear ? 1 : 0, l.level, l.l);
       };
       RemeshResult result;
       try {

@@ -161,6 +161,7 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
 struct SnapResult {
   std::size_t candidates = 0;  // input vertices farther than the tolerance from the remeshed surface at the start
   std::size_t snapped = 0;     // remeshed vertices moved onto one of them and kept there
+  std::size_t tries = 0;       // moves tried (each a relaxation of up to three passes)
   int rounds = 0;
   double max_before = 0, max_after = 0;  // largest distance of an interior input vertex to the remeshed surface,
                                          // before and after this step
