@@ -46,8 +46,8 @@ void add_remesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--kn", opt->kn, "star number of the nonlinear optimizer")->default_val(2)->check(CLI::PositiveNumber);
   cmd->add_option("--p", opt->p, "replace the projection mesh every p iterations (0: never)")->default_val(0)->check(CLI::NonNegativeNumber);
   cmd->add_option("--l", opt->l,
-                  "percent of long+short edges at or below which the nonlinear optimizer runs (doubled, up to 4, "
-                  "when the low-pass phase finds no new low in 5 iterations)")
+                  "percent of long+short edges at or below which the nonlinear optimizer runs (doubled once the "
+                  "low-pass phase finds no new low in 5 iterations)")
       ->default_val(0.5)->check(CLI::NonNegativeNumber);
   const std::map<std::string, ParametrizationWeights> weights{{"mean-value", ParametrizationWeights::MeanValue},
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};

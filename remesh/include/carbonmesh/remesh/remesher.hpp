@@ -25,7 +25,7 @@ struct IterationLog {
   double seconds = 0;        // since the start of remesh()
   bool nonlinear = false;    // the nonlinear optimizer ran instead of the low-pass filter
   double l = 0;              // the share of long+short edges (percent) at or below which it runs: settings.l,
-                             // doubled (up to 4%) each time the low-pass phase finds no new low in 5 iterations
+                             // doubled once the low-pass phase has found no new low in 5 iterations
   int level = 0;             // coarse-to-fine level: 0 the final interval, k the interval times 2^k
 };
 
