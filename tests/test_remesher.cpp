@@ -366,8 +366,8 @@ TriMesh grid_cube(double side, int n) {
 
 // A cube's 90-degree edges keep stirring up a few dozen edges of the interval (the projection shortens every edge
 // across them) and the low-pass phase stalls at about 1% long+short, above l = 0.5%: it went on for about 70
-// iterations before a chance low let the nonlinear optimizer in. On a stall the share that starts it is doubled once, so
-// the optimizer takes over at 1% and the loop ends with every edge inside.
+// iterations before a chance low let the nonlinear optimizer in. On a stall the share that starts it is doubled
+// once, so the optimizer takes over at 1% and the loop ends with every edge inside.
 TEST(Remesher, AStalledLowPassPhaseHandsOverToTheNonlinearOptimizer) {
   TriMesh cube = grid_cube(19.77, 10);  // mean edge 2.25, the seed protocol's
   RemeshSettings settings;

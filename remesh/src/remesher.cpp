@@ -243,7 +243,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   std::size_t churn = 0;
   std::size_t lowest = std::numeric_limits<std::size_t>::max();
   int stalled = 0;
-  double l = s.l;  // the share of long+short edges (percent) that starts the nonlinear phase; raised on a stall
+  double l = s.l;  // the share of long+short edges (percent) that starts the nonlinear phase; raised once on a stall
   // A mesh with every edge inside but vertices two or more off their ideal valence (the valence-4/8 grid that the
   // bisection above makes of a cube's faces) gets one ordinary iteration anyway: flips and the low-pass filter,
   // which the interval test alone would skip. Then the loop goes on while edges are outside.
@@ -273,7 +273,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       stalled = 0;
       // A low-pass phase that stalls above l (noise or creases at the edge scale keep stirring up the same few
       // dozen edges) hands over to the nonlinear optimizer at twice the share. Once: doubled again (to 2-4%), it
-      // also took over on a flat disc and a noisy sphere in `build`, which then had 25-45% more strained atoms.
+      // also took over on a flat disc and a noisy sphere in `build`, which then had 26-44% more strained atoms.
       if (troubling_percent(edges) > l && l == s.l && s.l > 0) {
         l = 2 * s.l;
         spdlog::debug("iteration {}: no new low of long+short edges in {} iterations ({:.2f}%): the nonlinear "

@@ -34,7 +34,7 @@ constexpr int kPasses = 3;           // relax-and-project passes before a move i
                                      // clean one)
 constexpr std::size_t kHopelessFlaws = 8;  // more new flaws than this after a pass: given up at once (no kept move on
                                            // the seven seed-protocol models or a sphere with 2% noise had more than 8
-                                           // after any pass; of the failed ones, about half had after the first)
+                                           // after any pass; 25-39% of the failed ones had after the first)
 
 struct Distance {
   double d = 0;
