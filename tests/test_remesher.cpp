@@ -382,6 +382,28 @@ TEST(Remesher, AStalledLowPassPhaseHandsOverToTheNonlinearOptimizer) {
   EXPECT_TRUE(topology(cube).same_type(result.before));
 }
 
+// A disc 1:20 with mean edge 2.25 (seed protocol): its rim is thinner than emin and the loop never converges; its
+// best mesh (the fewest long+short edges) comes in iteration 18 and none better in the 132 iterations after it.
+// The loop stops after 40 iterations without a better mesh, and the post-processed result is the one of all 150.
+TEST(Remesher, ALoopWithoutABetterMeshForFortyIterationsStopsWithTheSameResult) {
+  const TriMesh disc = test::scaled(test::stretched(make_icosphere({10.0, 4}), 2, 0.05), 2.25);
+  RemeshSettings settings;
+  settings.snap_features = settings.fit_surface = settings.flip_toward_input = false;
+  TriMesh stopped = disc, full = disc;
+  const RemeshResult a = remesh(stopped, settings);
+  settings.stall_limit = 0;
+  const RemeshResult b = remesh(full, settings);
+  EXPECT_TRUE(a.stalled);
+  EXPECT_FALSE(b.stalled);
+  EXPECT_EQ(b.iterations, 150);
+  EXPECT_LT(a.iterations, 100);
+  EXPECT_TRUE(a.post_processed);
+  ASSERT_EQ(stopped.n_vertices(), full.n_vertices());
+  ASSERT_EQ(stopped.n_faces(), full.n_faces());
+  for (auto v : stopped.vertices()) ASSERT_EQ(stopped.point(v), full.point(TriMesh::VertexHandle(v.idx())));
+  EXPECT_TRUE(topology(stopped).same_type(a.before));
+}
+
 // The feature snap on a cube: vertices are put on corner and edge points that the remeshed triangles cut off.
 // The RMS distance to the input falls clearly (measured 0.1615 -> 0.1234), the farthest input vertex does not
 // get farther, and every edge stays inside. The largest sampled distance does not fall (0.964 -> 1.017): the

@@ -36,6 +36,9 @@ struct RemeshSettings {
   int kn = 2;                     // star number of the nonlinear optimizer
   int p = 0;                      // replace the projection target by the current mesh every p iterations (0: never)
   double l = 0.5;                 // percent of long+short edges at or below which the nonlinear optimizer runs
+  // The loop ends after this many iterations without a better mesh (fewer long+short edges, ties by more regular
+  // vertices) and the best mesh goes to the post-processing, as after n iterations (0: never before n).
+  int stall_limit = 40;
   ParametrizationWeights weights = ParametrizationWeights::MeanValue;
   // Refuse (InputError) an interval that would need more triangles than this: the estimate is the surface area
   // over the area of an equilateral triangle of edge (emin + emax) / 2. Guards against a model in the wrong
@@ -86,6 +89,9 @@ struct RemeshResult {
   // The loop stopped early: the surface area was below half of what it started with and still falling by more than
   // 15% per 10 iterations (a surface thinner than the interval eroding); the best mesh goes to the post-processing.
   bool vanished = false;
+  // The loop stopped early: no better mesh for settings.stall_limit iterations; the best mesh goes to the
+  // post-processing.
+  bool stalled = false;
   std::size_t bisected_vertices = 0;  // vertices added by the longest-edge bisection of an input with mean edge > 2 emax
   std::size_t long_edges = 0, short_edges = 0;
   double percent_regular = 0;
