@@ -370,6 +370,9 @@ void add_build_command(CLI::App& app, Action& action) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--l", opt->remesh.l, "remesh: percent of long+short edges that starts the nonlinear optimizer")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--stall-limit", opt->remesh.stall_limit,
+                  "remesh: stop after this many iterations without a better mesh (0: never)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   const std::map<std::string, ParametrizationWeights> weights{{"mean-value", ParametrizationWeights::MeanValue},
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};
   cmd->add_option("--weights", opt->remesh.weights, "remesh: mean-value or shape-preserving")
