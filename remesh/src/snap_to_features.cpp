@@ -215,11 +215,13 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
       choices.erase(std::unique(choices.begin(), choices.end()), choices.end());
       if (choices.size() > kChoices) choices.resize(kChoices);
       if (choices.size() > 1 && choices[1].first > emin) choices.resize(1);
-      for (const auto& choice : choices)
-        if (++result.tries, try_snap(TriMesh::VertexHandle(choice.second), q)) {
+      for (const auto& choice : choices) {
+        ++result.tries;
+        if (try_snap(TriMesh::VertexHandle(choice.second), q)) {
           ++snapped;
           break;
         }
+      }
     }
     // Input vertices whose nearest face moved: measured again among the faces around it.
     for (std::size_t i = 0; i < distances.size(); ++i) {
