@@ -11,11 +11,18 @@
 // was at the start of the round (so that distance never grows); otherwise every position is restored. Farthest
 // input vertices first, in rounds: the distances of the input vertices next to a kept move are measured again
 // (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move failed are
-// tried again in a new neighbourhood.
+// tried again in a new neighbourhood. Moves far enough apart that neither can see the other run on all threads
+// (Schedule below), with the result of one thread taking them in order.
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <limits>
+#include <mutex>
 #include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
@@ -84,6 +91,250 @@ Distance local_distance(const TriMesh& mesh, const Vec3& q, TriMesh::FaceHandle 
   return best;
 }
 
+
+int max_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+int thread_index() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+// What every move of a round reads and writes: the mesh, the input vertices' distances as measured at the start of
+// the round, and the per-vertex marks.
+struct SnapState {
+  SnapState(TriMesh& m, const TriMesh& in, const ProjectionTarget& t, int k, double lo, double hi)
+      : mesh(m), input(in), target(t), kn(k), emin(lo), emax(hi) {}
+  TriMesh& mesh;
+  const TriMesh& input;
+  const ProjectionTarget& target;
+  int kn;
+  double emin, emax;
+  std::vector<char> fixed, touched, tried;
+  std::vector<Distance> distances;
+  // Input vertices by their nearest face (as measured at the start of the round): first_near[f], then next_near[i].
+  std::vector<int> first_near, next_near;
+  double round_max = 0;  // the farthest input vertex at the start of the round
+};
+
+// One thread's scratch space and counts; visit() is the move of one candidate input vertex.
+struct Worker {
+  LocalRegion local, search;
+  std::vector<TriMesh::VertexHandle> region, inner, variables, around;
+  std::vector<std::pair<TriMesh::VertexHandle, Vec3>> saved;
+  std::vector<TriMesh::FaceHandle> region_faces;
+  std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
+  std::vector<Vec3> neighbors;
+  std::vector<int> watched;
+  std::vector<std::pair<double, int>> choices;
+  std::size_t tries = 0, snapped = 0;
+
+  Worker(double emin, double emax) : local(emin, emax), search(emin, emax) {}
+
+  void project(SnapState& s, TriMesh::VertexHandle v) {
+    neighbors.clear();
+    for (auto w : s.mesh.vv_range(v)) neighbors.push_back(s.mesh.point(w));
+    s.mesh.set_point(v, s.target.project(s.mesh.point(v), neighbors));
+  }
+
+  double measure(const SnapState& s, int i) {
+    return local_distance(s.mesh, s.input.point(TriMesh::VertexHandle(i)),
+                          TriMesh::FaceHandle(s.distances[static_cast<std::size_t>(i)].face), 2, search, around)
+        .d;
+  }
+
+  // After a move: whether every watched input vertex is nearer than `limit`.
+  bool watched_within(const SnapState& s, double limit) {
+    for (const int i : watched)
+      if (measure(s, i) >= limit) return false;
+    return true;
+  }
+
+  // Moves v onto q, relaxes and projects its neighbourhood; keeps the result if the region has no new flaw and the
+  // input vertices nearest its faces all end nearer than the farthest input vertex at the start of the round
+  // (without this check the snap raised the farthest input vertex of spheres with 4% noise in 10 of 16 seeds; a
+  // stricter one, nearer than the farthest of the watched vertices, lowered armadillo's Hausdorff maximum 0.589 ->
+  // 0.537 but raised bunny's 0.798 -> 0.850 and its RMS, 2M samples).
+  bool try_snap(SnapState& s, TriMesh::VertexHandle v, const Vec3& q) {
+    TriMesh& mesh = s.mesh;
+    local.collect(mesh, v, s.kn + 3, region);  // every vertex the relaxation moves, with their stars
+    const std::size_t flaws_before = local.flaws(mesh, region);
+    local.faces(mesh, region, region_faces);  // each once: the fold check below runs every pass
+    watched.clear();
+    for (auto f : region_faces)
+      for (int i = s.first_near[static_cast<std::size_t>(f.idx())]; i >= 0; i = s.next_near[static_cast<std::size_t>(i)])
+        watched.push_back(i);
+    normals.clear();
+    for (auto f : region_faces) normals.emplace_back(f, geometry::face_normal(mesh, f));
+    saved.assign(1, {v, mesh.point(v)});
+    mesh.set_point(v, q);
+    s.fixed[static_cast<std::size_t>(v.idx())] = 1;
+    // The free interior vertices within kn + 1 rings of v (breadth first) are relaxed around it.
+    local.collect(mesh, v, s.kn + 1, inner);
+    variables.clear();
+    for (auto w : inner)
+      if (w != v && !mesh.is_boundary(w) && !s.fixed[static_cast<std::size_t>(w.idx())]) variables.push_back(w);
+    for (int pass = 0; pass < kPasses; ++pass) {
+      for (auto w : variables) saved.emplace_back(w, mesh.point(w));
+      optimize_vertices(mesh, variables, s.emin, s.emax);
+      for (auto w : variables) project(s, w);
+      bool folded = false;
+      for (const auto& [f, before] : normals)
+        folded = folded || OpenMesh::dot(before, geometry::face_normal(mesh, f)) < geometry::kMaxNormalTurnCos;
+      const std::size_t flaws = local.flaws(mesh, region);
+      if (!folded && flaws <= flaws_before && watched_within(s, s.round_max)) {
+        for (auto w : region) s.touched[static_cast<std::size_t>(w.idx())] = 1;
+        return true;
+      }
+      if (flaws > flaws_before + kHopelessFlaws) break;
+    }
+    for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
+    s.fixed[static_cast<std::size_t>(v.idx())] = 0;
+    return false;
+  }
+
+  // The move of input vertex c: reads and writes the mesh within kBallRings - 1 rings of the corners of c's
+  // nearest face (see Batches).
+  void visit(SnapState& s, int c) {
+    TriMesh& mesh = s.mesh;
+    const Vec3 q = s.input.point(TriMesh::VertexHandle(c));
+    const auto face = TriMesh::FaceHandle(s.distances[static_cast<std::size_t>(c)].face);
+    // The remeshed surface near this point changed in this round: its distance is measured again first.
+    bool stale = false;
+    for (auto w : mesh.fv_range(face)) stale = stale || s.touched[static_cast<std::size_t>(w.idx())];
+    if (stale) return;
+    s.tried[static_cast<std::size_t>(c)] = 1;
+    // The free vertices nearest the point among the nearest face's corners and their neighbours; the second
+    // only if it is within emin (on armadillo 0 of 13 second choices farther away were kept).
+    choices.clear();
+    for (auto corner : mesh.fv_range(face))
+      for (auto w : mesh.vv_range(corner))
+        for (auto u : {corner, w}) {
+          const double d = (mesh.point(u) - q).norm();
+          if (!mesh.is_boundary(u) && !s.fixed[static_cast<std::size_t>(u.idx())] && d <= s.emax)
+            choices.emplace_back(d, u.idx());
+        }
+    std::sort(choices.begin(), choices.end());
+    choices.erase(std::unique(choices.begin(), choices.end()), choices.end());
+    if (choices.size() > kChoices) choices.resize(kChoices);
+    if (choices.size() > 1 && choices[1].first > s.emin) choices.resize(1);
+    for (const auto& choice : choices) {
+      ++tries;
+      if (try_snap(s, TriMesh::VertexHandle(choice.second), q)) {
+        ++snapped;
+        break;
+      }
+    }
+  }
+};
+
+// The moves of a round, on every thread, with the result of one thread taking them in order. A move reads the mesh
+// within 2 kn + 8 rings of the corners of its input vertex's nearest face (its region of kn + 3 rings around a vertex
+// next to them, the stars of those, and the 2 rings around the faces nearest the input vertices it watches) and
+// writes within kn + 2 (positions) and kn + 4 (the touched marks, read only at the corners): two moves whose balls
+// of kn + 5 rings around their corners are disjoint are more than 2 kn + 10 rings apart, and neither sees the
+// other. A move starts once every earlier move whose ball meets its own has finished.
+class Schedule {
+ public:
+  Schedule(const TriMesh& mesh, int kn) : mesh_(mesh), rings_(kn + 5), claim_(mesh.n_vertices(), 0) {}
+
+  // Runs visit(c) for every candidate c (input vertex indices in order).
+  template <typename Visit>
+  void run(const std::vector<int>& candidates, const std::vector<Distance>& distances, Visit&& visit) {
+    balls_.assign(candidates.size(), {});
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      ball(TriMesh::FaceHandle(distances[static_cast<std::size_t>(candidates[k])].face), balls_[k]);
+    state_.assign(candidates.size(), kWaiting);
+    first_ = 0;
+#pragma omp parallel
+    {
+      for (;;) {
+        std::size_t k = 0;
+        {
+          std::unique_lock<std::mutex> lock(mutex_);
+          bool found = false;
+          for (;;) {
+            while (first_ < state_.size() && state_[first_] == kDone) ++first_;
+            if (first_ == state_.size()) break;
+            found = pick(k);
+            if (found) break;
+            wake_.wait(lock);
+          }
+          if (!found) break;
+          state_[k] = kRunning;
+        }
+        visit(candidates[k]);
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          state_[k] = kDone;
+        }
+        wake_.notify_all();
+      }
+    }
+  }
+
+ private:
+  static constexpr char kWaiting = 0, kRunning = 1, kDone = 2;
+  static constexpr std::size_t kScan = 64;  // unfinished moves looked at for one that may start
+
+  // The earliest waiting move whose ball meets that of no earlier unfinished move.
+  bool pick(std::size_t& out) {
+    ++stamp_;
+    std::size_t scanned = 0;
+    for (std::size_t k = first_; k < state_.size() && scanned < kScan; ++k) {
+      if (state_[k] == kDone) continue;
+      ++scanned;
+      bool free = true;
+      for (const int v : balls_[k]) {
+        unsigned& c = claim_[static_cast<std::size_t>(v)];
+        free = free && c != stamp_;
+        c = stamp_;
+      }
+      if (free && state_[k] == kWaiting) {
+        out = k;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  void ball(TriMesh::FaceHandle face, std::vector<int>& out) {
+    ++stamp_;
+    out.clear();
+    auto visit = [&](TriMesh::VertexHandle v) {
+      unsigned& c = claim_[static_cast<std::size_t>(v.idx())];
+      if (c == stamp_) return;
+      c = stamp_;
+      out.push_back(v.idx());
+    };
+    for (auto v : mesh_.fv_range(face)) visit(v);
+    for (std::size_t begin = 0, r = 0; r < static_cast<std::size_t>(rings_); ++r) {
+      const std::size_t end = out.size();
+      for (std::size_t i = begin; i < end; ++i)
+        for (auto w : mesh_.vv_range(TriMesh::VertexHandle(out[i]))) visit(w);
+      begin = end;
+    }
+  }
+
+  const TriMesh& mesh_;
+  int rings_;
+  std::vector<unsigned> claim_;
+  unsigned stamp_ = 0;
+  std::vector<std::vector<int>> balls_;
+  std::vector<char> state_;
+  std::size_t first_ = 0;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+};
+
 }  // namespace
 
 FarthestInputVertex farthest_input_vertex(const TriMesh& mesh, const TriMesh& input) {
@@ -102,146 +353,65 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
                             double emax, double tolerance) {
   SnapResult result;
   mesh.garbage_collection();  // face indices = positions in triangles_of
-  std::vector<char> fixed(mesh.n_vertices(), 0), tried(input.n_vertices(), 0), touched(mesh.n_vertices(), 0);
-  LocalRegion local(emin, emax), search(emin, emax);
-  std::vector<TriMesh::VertexHandle> region, inner, variables, around;
-  std::vector<std::pair<TriMesh::VertexHandle, Vec3>> saved;
-  std::vector<TriMesh::FaceHandle> region_faces;
-  std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
-  std::vector<Vec3> neighbors;
-  std::vector<Distance> distances = input_distances(mesh, input);
-  auto project = [&](TriMesh::VertexHandle v) {
-    neighbors.clear();
-    for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
-    mesh.set_point(v, target.project(mesh.point(v), neighbors));
-  };
-  // Input vertices by their nearest face (as measured at the start of the round): first_near[f], then next_near[i].
-  std::vector<int> first_near, next_near(input.n_vertices(), -1), watched;
-  double round_max = 0;  // the farthest input vertex at the start of the round
-  auto measure = [&](int i) {
-    return local_distance(mesh, input.point(TriMesh::VertexHandle(i)),
-                          TriMesh::FaceHandle(distances[static_cast<std::size_t>(i)].face), 2, search, around)
-        .d;
-  };
-  // After a move: whether every watched input vertex is nearer than `limit`.
-  auto watched_within = [&](double limit) {
-    for (const int i : watched)
-      if (measure(i) >= limit) return false;
-    return true;
-  };
-  // Moves v onto q, relaxes and projects its neighbourhood; keeps the result if the region has no new flaw and the
-  // input vertices nearest its faces all end nearer than the farthest input vertex at the start of the round
-  // (without this check the snap raised the farthest input vertex of spheres with 4% noise in 10 of 16 seeds; a
-  // stricter one, nearer than the farthest of the watched vertices, lowered armadillo's Hausdorff maximum 0.589 ->
-  // 0.537 but raised bunny's 0.798 -> 0.850 and its RMS, 2M samples).
-  auto try_snap = [&](TriMesh::VertexHandle v, const Vec3& q) {
-    local.collect(mesh, v, kn + 3, region);  // every vertex the relaxation moves, with their stars
-    const std::size_t flaws_before = local.flaws(mesh, region);
-    local.faces(mesh, region, region_faces);  // each once: the fold check below runs every pass
-    watched.clear();
-    for (auto f : region_faces)
-      for (int i = first_near[static_cast<std::size_t>(f.idx())]; i >= 0; i = next_near[static_cast<std::size_t>(i)])
-        watched.push_back(i);
-    normals.clear();
-    for (auto f : region_faces) normals.emplace_back(f, geometry::face_normal(mesh, f));
-    saved.assign(1, {v, mesh.point(v)});
-    mesh.set_point(v, q);
-    fixed[static_cast<std::size_t>(v.idx())] = 1;
-    // The free interior vertices within kn + 1 rings of v (breadth first) are relaxed around it.
-    local.collect(mesh, v, kn + 1, inner);
-    variables.clear();
-    for (auto w : inner)
-      if (w != v && !mesh.is_boundary(w) && !fixed[static_cast<std::size_t>(w.idx())]) variables.push_back(w);
-    for (int pass = 0; pass < kPasses; ++pass) {
-      for (auto w : variables) saved.emplace_back(w, mesh.point(w));
-      optimize_vertices(mesh, variables, emin, emax);
-      for (auto w : variables) project(w);
-      bool folded = false;
-      for (const auto& [f, before] : normals)
-        folded = folded || OpenMesh::dot(before, geometry::face_normal(mesh, f)) < geometry::kMaxNormalTurnCos;
-      const std::size_t flaws = local.flaws(mesh, region);
-      if (!folded && flaws <= flaws_before && watched_within(round_max)) {
-        for (auto w : region) touched[static_cast<std::size_t>(w.idx())] = 1;
-        return true;
-      }
-      if (flaws > flaws_before + kHopelessFlaws) break;
-    }
-    for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
-    fixed[static_cast<std::size_t>(v.idx())] = 0;
-    return false;
-  };
+  SnapState state(mesh, input, target, kn, emin, emax);
+  state.fixed.assign(mesh.n_vertices(), 0);
+  state.touched.assign(mesh.n_vertices(), 0);
+  state.tried.assign(input.n_vertices(), 0);
+  state.next_near.assign(input.n_vertices(), -1);
+  state.distances = input_distances(mesh, input);
+  std::vector<Distance>& distances = state.distances;
+  std::vector<Worker> workers;
+  for (int t = 0; t < max_threads(); ++t) workers.emplace_back(emin, emax);
+  Schedule schedule(mesh, kn);
 
   std::vector<int> candidates;
-  std::vector<std::pair<double, int>> choices;
   for (const auto& d : distances) result.max_before = std::max(result.max_before, d.d);
   for (int round = 0; round < kRounds; ++round) {
     candidates.clear();
     for (std::size_t i = 0; i < distances.size(); ++i)
-      if (distances[i].d > tolerance && distances[i].face >= 0 && !tried[i]) candidates.push_back(static_cast<int>(i));
+      if (distances[i].d > tolerance && distances[i].face >= 0 && !state.tried[i])
+        candidates.push_back(static_cast<int>(i));
     if (round == 0) result.candidates = candidates.size();
     std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
       const double da = distances[static_cast<std::size_t>(a)].d, db = distances[static_cast<std::size_t>(b)].d;
       return da != db ? da > db : a < b;
     });
-    std::fill(touched.begin(), touched.end(), 0);
-    round_max = 0;
-    for (const auto& d : distances) round_max = std::max(round_max, d.d);
-    first_near.assign(mesh.n_faces(), -1);
+    std::fill(state.touched.begin(), state.touched.end(), 0);
+    state.round_max = 0;
+    for (const auto& d : distances) state.round_max = std::max(state.round_max, d.d);
+    state.first_near.assign(mesh.n_faces(), -1);
     for (std::size_t i = 0; i < distances.size(); ++i)
       if (distances[i].face >= 0) {
-        next_near[i] = first_near[static_cast<std::size_t>(distances[i].face)];
-        first_near[static_cast<std::size_t>(distances[i].face)] = static_cast<int>(i);
+        state.next_near[i] = state.first_near[static_cast<std::size_t>(distances[i].face)];
+        state.first_near[static_cast<std::size_t>(distances[i].face)] = static_cast<int>(i);
       }
+    // Farthest first; candidates far enough apart that neither move can see the other's run in parallel, so the
+    // result is that of one thread taking them in order.
+    for (auto& w : workers) w.snapped = 0;
+    schedule.run(candidates, distances,
+                 [&](int c) { workers[static_cast<std::size_t>(thread_index())].visit(state, c); });
     std::size_t snapped = 0;
-    for (const int c : candidates) {
-      const Vec3 q = input.point(TriMesh::VertexHandle(c));
-      const auto face = TriMesh::FaceHandle(distances[static_cast<std::size_t>(c)].face);
-      // The remeshed surface near this point changed in this round: its distance is measured again first.
-      bool stale = false;
-      for (auto w : mesh.fv_range(face)) stale = stale || touched[static_cast<std::size_t>(w.idx())];
-      if (stale) continue;
-      tried[static_cast<std::size_t>(c)] = 1;
-      // The free vertices nearest the point among the nearest face's corners and their neighbours; the second
-      // only if it is within emin (on armadillo 0 of 13 second choices farther away were kept).
-      choices.clear();
-      for (auto corner : mesh.fv_range(face))
-        for (auto w : mesh.vv_range(corner))
-          for (auto u : {corner, w}) {
-            const double d = (mesh.point(u) - q).norm();
-            if (!mesh.is_boundary(u) && !fixed[static_cast<std::size_t>(u.idx())] && d <= emax)
-              choices.emplace_back(d, u.idx());
-          }
-      std::sort(choices.begin(), choices.end());
-      choices.erase(std::unique(choices.begin(), choices.end()), choices.end());
-      if (choices.size() > kChoices) choices.resize(kChoices);
-      if (choices.size() > 1 && choices[1].first > emin) choices.resize(1);
-      for (const auto& choice : choices) {
-        ++result.tries;
-        if (try_snap(TriMesh::VertexHandle(choice.second), q)) {
-          ++snapped;
-          break;
-        }
-      }
-    }
+    for (auto& w : workers) snapped += w.snapped;
     // Input vertices whose nearest face moved: measured again among the faces around it.
     for (std::size_t i = 0; i < distances.size(); ++i) {
       Distance& d = distances[i];
       if (d.face < 0) continue;
       bool stale = false;
       for (auto w : mesh.fv_range(TriMesh::FaceHandle(d.face)))
-        stale = stale || touched[static_cast<std::size_t>(w.idx())];
+        stale = stale || state.touched[static_cast<std::size_t>(w.idx())];
       if (stale) {
         d = local_distance(mesh, input.point(TriMesh::VertexHandle(static_cast<int>(i))), TriMesh::FaceHandle(d.face),
-                           3, search, around);
-        tried[i] = 0;  // a new neighbourhood: may be tried again
+                           3, workers[0].search, workers[0].around);
+        state.tried[i] = 0;  // a new neighbourhood: may be tried again
       }
     }
     result.snapped += snapped;
     result.rounds = round + 1;
     if (snapped == 0) break;
   }
+  for (const auto& w : workers) result.tries += w.tries;
   for (const auto& d : distances) result.max_after = std::max(result.max_after, d.d);
-  result.fixed = std::move(fixed);
+  result.fixed = std::move(state.fixed);
   return result;
 }
 
