@@ -5,6 +5,10 @@
 #include <utility>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
@@ -138,6 +142,69 @@ TEST(EdgeStats, LongAndShortAreStrict) {
   EXPECT_EQ(above.short_edges, 30u);
   EXPECT_DOUBLE_EQ(above.percent_inside, 0.0);
   EXPECT_NEAR(edge_stats(mesh).std, 0.0, 1e-12);
+}
+
+// The metrics run on every thread over meshes this large; the figures are those of one pass in element order, and
+// elements deleted by a collapse (not yet garbage-collected) are left out.
+TEST(Metrics, SameFiguresOnTwoThreadsAsOnOneWithDeletedElementsLeftOut) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP";
+#else
+  TriMesh mesh = make_icosphere({10.0, 5});  // 20480 faces, a bordered cap cut off below
+  std::vector<TriMesh::VertexHandle> below;
+  for (auto v : mesh.vertices())
+    if (mesh.point(v)[2] < -9.0) below.push_back(v);
+  for (auto v : below) mesh.delete_vertex(v, false);
+  std::size_t collapsed = 0;
+  for (auto h : mesh.halfedges())
+    if (collapsed < 300 && !mesh.status(h).deleted() && !mesh.is_boundary(mesh.edge_handle(h)) &&
+        !mesh.is_boundary(mesh.from_vertex_handle(h)) && mesh.is_collapse_ok(h) && h.idx() % 97 == 0) {
+      mesh.collapse(h);
+      ++collapsed;
+    }
+  ASSERT_GT(collapsed, 100u);
+  // The reference: the same figures from OpenMesh's skipping ranges, one element at a time.
+  double sum = 0, area = 0;
+  std::size_t edges = 0, vertices = 0, border = 0;
+  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e), ++edges;
+  for (auto v : mesh.vertices()) ++vertices, border += mesh.is_boundary(v);
+  for (auto f : mesh.faces()) area += mesh.calc_face_area(f);
+  ASSERT_GT(border, 0u);
+  ASSERT_LT(edges, mesh.n_edges());
+
+  omp_set_num_threads(1);
+  const EdgeStats e1 = edge_stats(mesh, {0.3, 0.4});
+  const ValenceStats v1 = valence_stats(mesh);
+  const double a1 = surface_area(mesh);
+  omp_set_num_threads(2);
+  const EdgeStats e2 = edge_stats(mesh, {0.3, 0.4});
+  const ValenceStats v2 = valence_stats(mesh);
+  const double a2 = surface_area(mesh);
+  omp_set_num_threads(omp_get_num_procs());
+
+  EXPECT_EQ(e1.count, edges);
+  EXPECT_NEAR(e1.mean, sum / static_cast<double>(edges), 1e-12);
+  EXPECT_NEAR(a1, area, 1e-9 * area);
+  std::size_t counted = 0, counted_border = 0;
+  for (const auto& [valence, n] : v1.interior) counted += n;
+  for (const auto& [valence, n] : v1.boundary) counted += n, counted_border += n;
+  EXPECT_EQ(counted, vertices);
+  EXPECT_EQ(counted_border, border);
+  EXPECT_GT(e1.long_edges + e1.short_edges, 0u);
+
+  EXPECT_EQ(e1.count, e2.count);
+  EXPECT_EQ(e1.mean, e2.mean);
+  EXPECT_EQ(e1.std, e2.std);
+  EXPECT_EQ(e1.min, e2.min);
+  EXPECT_EQ(e1.max, e2.max);
+  EXPECT_EQ(e1.long_edges, e2.long_edges);
+  EXPECT_EQ(e1.short_edges, e2.short_edges);
+  EXPECT_EQ(v1.interior, v2.interior);
+  EXPECT_EQ(v1.boundary, v2.boundary);
+  EXPECT_EQ(v1.eval_total, v2.eval_total);
+  EXPECT_EQ(v1.percent_regular, v2.percent_regular);
+  EXPECT_EQ(a1, a2);
+#endif
 }
 
 TEST(Hausdorff, MeshToItselfIsZero) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <vector>
@@ -27,6 +28,17 @@ struct DisjointSets {
 
 double percent(std::size_t part, std::size_t whole) {
   return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
+}
+
+// f(i) for i in [0, n), computed on every thread into its own slot (small meshes on one).
+template <typename F>
+auto per_element(std::size_t n, F&& f) {
+  using R = decltype(f(0));
+  std::vector<R> out(n);
+  const int count = static_cast<int>(n);
+#pragma omp parallel for schedule(static) if (count > 4096)
+  for (int i = 0; i < count; ++i) out[static_cast<std::size_t>(i)] = f(i);
+  return out;
 }
 
 }  // namespace
@@ -74,11 +86,16 @@ Topology topology(const TriMesh& mesh) {
 
 EdgeStats edge_stats(const TriMesh& mesh, const EdgeInterval& interval) {
   EdgeStats s;
+  // The lengths on every thread, summed in edge order: the same figures for any thread count.
+  const std::vector<double> lengths = per_element(mesh.n_edges(), [&](int i) {
+    const TriMesh::EdgeHandle e(i);
+    return mesh.status(e).deleted() ? -1.0 : mesh.calc_edge_length(e);
+  });
   double sum = 0, sum2 = 0;
   s.min = std::numeric_limits<double>::infinity();
   s.max = 0;
-  for (auto e : mesh.edges()) {
-    const double l = mesh.calc_edge_length(e);
+  for (const double l : lengths) {
+    if (l < 0) continue;  // deleted
     ++s.count;
     sum += l;
     sum2 += l * l;
@@ -102,12 +119,24 @@ int ideal_valence(const TriMesh& mesh, TriMesh::VertexHandle v) { return mesh.is
 
 ValenceStats valence_stats(const TriMesh& mesh) {
   ValenceStats s;
-  std::size_t n = 0, regular = 0, eval0 = 0, eval1 = 0, eval_gt1 = 0;
-  for (auto v : mesh.vertices()) {
+  // Valences on every thread (negative: a border vertex, -1 - valence; deleted: none), counted in vertex order.
+  constexpr int kDeleted = std::numeric_limits<int>::min();
+  const std::vector<int> valences = per_element(mesh.n_vertices(), [&](int i) {
+    const TriMesh::VertexHandle v(i);
+    if (mesh.status(v).deleted()) return kDeleted;
     const int valence = static_cast<int>(mesh.valence(v));
-    const bool border = mesh.is_boundary(v);
-    ++(border ? s.boundary : s.interior)[valence];
-    const int d = ideal_valence(mesh, v) - valence;
+    return mesh.is_boundary(v) ? -1 - valence : valence;
+  });
+  std::vector<std::size_t> interior, boundary;  // counts by valence
+  std::size_t n = 0, regular = 0, eval0 = 0, eval1 = 0, eval_gt1 = 0;
+  for (const int code : valences) {
+    if (code == kDeleted) continue;
+    const bool border = code < 0;
+    const int valence = border ? -1 - code : code;
+    auto& counts = border ? boundary : interior;
+    if (counts.size() <= static_cast<std::size_t>(valence)) counts.resize(static_cast<std::size_t>(valence) + 1, 0);
+    ++counts[static_cast<std::size_t>(valence)];
+    const int d = (border ? 4 : 6) - valence;  // ideal_valence()
     const int eval = d * d;
     ++n;
     s.eval_total += static_cast<std::size_t>(eval);
@@ -115,6 +144,10 @@ ValenceStats valence_stats(const TriMesh& mesh) {
     else if (eval == 1) ++eval1;
     else ++eval_gt1;
   }
+  for (std::size_t k = 0; k < interior.size(); ++k)
+    if (interior[k] > 0) s.interior[static_cast<int>(k)] = interior[k];
+  for (std::size_t k = 0; k < boundary.size(); ++k)
+    if (boundary[k] > 0) s.boundary[static_cast<int>(k)] = boundary[k];
   s.percent_regular = percent(regular, n);
   s.percent_eval0 = percent(eval0, n);
   s.percent_eval1 = percent(eval1, n);
@@ -123,12 +156,16 @@ ValenceStats valence_stats(const TriMesh& mesh) {
 }
 
 double surface_area(const TriMesh& mesh) {
-  double area = 0;
-  for (auto f : mesh.faces()) {
+  // Face areas on every thread, summed in face order.
+  const std::vector<double> areas = per_element(mesh.n_faces(), [&](int i) {
+    const TriMesh::FaceHandle f(i);
+    if (mesh.status(f).deleted()) return 0.0;
     auto it = mesh.cfv_iter(f);
     const Vec3 a = mesh.point(*it++), b = mesh.point(*it++), c = mesh.point(*it);
-    area += 0.5 * OpenMesh::cross(b - a, c - a).norm();
-  }
+    return 0.5 * OpenMesh::cross(b - a, c - a).norm();
+  });
+  double area = 0;
+  for (const double a : areas) area += a;
   return area;
 }
 
