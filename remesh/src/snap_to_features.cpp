@@ -91,7 +91,6 @@ Distance local_distance(const TriMesh& mesh, const Vec3& q, TriMesh::FaceHandle 
   return best;
 }
 
-
 int max_threads() {
 #ifdef _OPENMP
   return omp_get_max_threads();
@@ -170,7 +169,8 @@ struct Worker {
     local.faces(mesh, region, region_faces);  // each once: the fold check below runs every pass
     watched.clear();
     for (auto f : region_faces)
-      for (int i = s.first_near[static_cast<std::size_t>(f.idx())]; i >= 0; i = s.next_near[static_cast<std::size_t>(i)])
+      for (int i = s.first_near[static_cast<std::size_t>(f.idx())]; i >= 0;
+           i = s.next_near[static_cast<std::size_t>(i)])
         watched.push_back(i);
     normals.clear();
     for (auto f : region_faces) normals.emplace_back(f, geometry::face_normal(mesh, f));
@@ -201,8 +201,8 @@ struct Worker {
     return false;
   }
 
-  // The move of input vertex c: reads and writes the mesh within kBallRings - 1 rings of the corners of c's
-  // nearest face (see Batches).
+  // The move of input vertex c: reads the mesh within kn + 8 rings of the corners of c's nearest face and writes
+  // within kn + 4 (see Schedule).
   void visit(SnapState& s, int c) {
     TriMesh& mesh = s.mesh;
     const Vec3 q = s.input.point(TriMesh::VertexHandle(c));
@@ -237,7 +237,7 @@ struct Worker {
 };
 
 // The moves of a round, on every thread, with the result of one thread taking them in order. A move reads the mesh
-// within 2 kn + 8 rings of the corners of its input vertex's nearest face (its region of kn + 3 rings around a vertex
+// within kn + 8 rings of the corners of its input vertex's nearest face (its region of kn + 3 rings around a vertex
 // next to them, the stars of those, and the 2 rings around the faces nearest the input vertices it watches) and
 // writes within kn + 2 (positions) and kn + 4 (the touched marks, read only at the corners): two moves whose balls
 // of kn + 5 rings around their corners are disjoint are more than 2 kn + 10 rings apart, and neither sees the
