@@ -36,17 +36,24 @@ def row(model, method, seconds, rss, s, iterations):
             f"{v['percent_eval_gt1']:.2f} | {h['max']:.4f} | {h['rms']:.4f} | {iterations} |")
 
 
-def fastest(repeat, command):
-    """Runs a command that prints a JSON object with "seconds" `repeat` times (the output is the same every time:
-    both remeshers are deterministic); returns the JSON of the fastest run and the largest peak RSS in MiB."""
-    best, peak = None, 0.0
+def fastest_of(commands, repeat):
+    """Runs each command `repeat` times, the commands taking turns (so that a machine slowing down or speeding up
+    between runs affects all of them alike); returns (JSON of the fastest run, largest peak RSS in MiB) for each."""
+    best, peak = [None] * len(commands), [0.0] * len(commands)
     for _ in range(max(1, repeat)):
-        out, _, rss = timed(command)
-        result = json.loads(out)
-        peak = max(peak, rss)
-        if best is None or result["seconds"] < best["seconds"]:
-            best = result
-    return best, peak
+        for i, command in enumerate(commands):
+            out, _, rss = timed(command)
+            result = json.loads(out)
+            peak[i] = max(peak[i], rss)
+            if best[i] is None or result["seconds"] < best[i]["seconds"]:
+                best[i] = result
+    return list(zip(best, peak))
+
+
+def ratio_line(ratios):
+    """The speed ratios carbonmesh / CGAL of a table, as one line under it."""
+    return ("Speed ratio, carbonmesh's seconds over CGAL's (fastest runs, the two methods taking turns): " +
+            "; ".join(f"{name} {r:.1f}x" for name, r in ratios) + ".")
 
 
 def plot_convergence(csv_path, png_path, title):
@@ -96,24 +103,29 @@ def main():
              "--weights mean-value` (with the final feature snap and least-squares surface fit, the defaults; "
              "`--no-snap` skips the snap, `--no-fit` leaves every vertex on the input). CGAL: isotropic_remeshing, "
              "target 1.5, 10 iterations, borders protected. Seconds: the method's own time (carbonmesh's remesh() / "
-             f"CGAL's calls, without file IO), the fastest of {args.repeat} runs; peak RSS: the whole process. "
+             f"CGAL's calls, without file IO), the fastest of {args.repeat} runs, the two methods taking turns; "
+             "peak RSS: the whole process. "
              "Hausdorff: symmetric, to the input, 200k samples a side. CGAL's output is measured "
              "with `stats --repair` (it can contain degenerate triangles). Written by "
              "tools/bench/remesh.py.", "",
              "| model | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "
              "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    ratios = []
     for model in models:
         src = os.path.join(args.models, model + ".off")
         ours, conv = os.path.join(work, model + ".off"), os.path.join(work, model + ".csv")
-        result, rss = fastest(args.repeat, [cli, "-q", "remesh", src, ours, "--log", conv, "--json"] + PROTOCOL)
+        theirs = os.path.join(work, model + "-cgal.off")
+        (result, rss), (peer_result, peer_rss) = fastest_of(
+            [[cli, "-q", "remesh", src, ours, "--log", conv, "--json"] + PROTOCOL,
+             [peer, src, theirs, "--target", "1.5", "--iterations", "10"]], args.repeat)
         lines.append(row(model, "carbonmesh", result["seconds"], rss, stats(cli, ours, src), result["iterations"]))
         plot_convergence(conv, os.path.join(img_dir, f"convergence-{model}.png"), f"{model}: long + short")
-        theirs = os.path.join(work, model + "-cgal.off")
-        result, rss = fastest(args.repeat, [peer, src, theirs, "--target", "1.5", "--iterations", "10"])
-        lines.append(row(model, "CGAL", result["seconds"], rss, stats(cli, theirs, src, repair=True), 10))
+        lines.append(row(model, "CGAL", peer_result["seconds"], peer_rss, stats(cli, theirs, src, repair=True), 10))
+        ratios.append((model, result["seconds"] / max(peer_result["seconds"], 1e-9)))
         print(lines[-2] + "\n" + lines[-1], flush=True)
-    lines += ["", "Convergence curves: " + ", ".join(f"[{m}](img/convergence-{m}.png)" for m in models), ""]
+    lines += ["", ratio_line(ratios), "",
+              "Convergence curves: " + ", ".join(f"[{m}](img/convergence-{m}.png)" for m in models), ""]
     if not args.no_study and "bunny" in models:
         lines += ["### Parameter study on bunny (Table 5.1 of the dissertation: kl x weights)", "",
                   "| kl | weights | iterations | seconds | long | short | % regular |", "|---|---|---|---|---|---|---|"]
