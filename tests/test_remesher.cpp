@@ -799,6 +799,37 @@ TEST(Remesher, RefusesAnIntervalThatWouldFillTheMemory) {
   EXPECT_EQ(mesh.n_faces(), make_icosphere({1e9, 1}).n_faces()) << "the mesh is untouched";
 }
 
+// The gains of a pass are computed on every thread from 4096 edges; the flips are those of one thread.
+TEST(ValenceOptimizer, SameFlipsOnTwoThreadsAsOnOne) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP";
+#else
+  TriMesh scrambled = make_icosphere({10.0, 5});  // 30720 edges
+  for (auto e : scrambled.edges())
+    if (e.idx() % 7 == 0 && scrambled.is_flip_ok(e)) scrambled.flip(e);
+  auto faces = [](const TriMesh& mesh) {
+    std::vector<std::array<int, 3>> out;
+    for (auto f : mesh.faces()) {
+      std::array<int, 3> t{};
+      int k = 0;
+      for (auto v : mesh.fv_range(f)) t[static_cast<std::size_t>(k++)] = v.idx();
+      out.push_back(t);
+    }
+    return out;
+  };
+  TriMesh one = scrambled, two = scrambled;
+  omp_set_num_threads(1);
+  const std::size_t a = correct_valence(one, 0.5);
+  omp_set_num_threads(2);
+  const std::size_t b = correct_valence(two, 0.5);
+  omp_set_num_threads(omp_get_num_procs());
+  EXPECT_GT(a, 1000u);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(faces(one), faces(two));
+  EXPECT_GT(valence_stats(one).percent_regular, valence_stats(scrambled).percent_regular);
+#endif
+}
+
 TEST(ValenceOptimizer, ImprovementOfAFlip) {
   // On the regular icosphere no flip improves the valence.
   TriMesh mesh = make_icosphere({10.0, 2});

@@ -47,9 +47,13 @@ int improvement(const FlipQuad& q, const std::vector<int>& valence, const std::v
 struct ValenceTable {
   std::vector<int> valence, ideal;
   explicit ValenceTable(const TriMesh& mesh) : valence(mesh.n_vertices(), 0), ideal(mesh.n_vertices(), 0) {
-    for (auto v : mesh.vertices()) {
-      valence[static_cast<std::size_t>(v.idx())] = static_cast<int>(mesh.valence(v));
-      ideal[static_cast<std::size_t>(v.idx())] = ideal_valence(mesh, v);
+    const int n = static_cast<int>(mesh.n_vertices());
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (int i = 0; i < n; ++i) {
+      const TriMesh::VertexHandle v(i);
+      if (mesh.status(v).deleted()) continue;
+      valence[static_cast<std::size_t>(i)] = static_cast<int>(mesh.valence(v));
+      ideal[static_cast<std::size_t>(i)] = ideal_valence(mesh, v);
     }
   }
   int gain(const TriMesh& mesh, TriMesh::EdgeHandle e) const {
@@ -95,11 +99,18 @@ std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep) {
       if (touched[static_cast<std::size_t>(v.idx())] > at) return false;
     return true;
   };
+  std::vector<int> gains;
   for (int pass = 0; pass < 100; ++pass) {
+    // The gains of every edge on every thread, listed in edge order (the same list for any thread count).
+    const int edges = static_cast<int>(mesh.n_edges());
+    gains.resize(static_cast<std::size_t>(edges));
+#pragma omp parallel for schedule(static) if (edges > 4096)
+    for (int i = 0; i < edges; ++i) gains[static_cast<std::size_t>(i)] = gain(TriMesh::EdgeHandle(i));
     std::vector<Entry> list;
-    for (auto e : mesh.edges()) {
-      const int g = gain(e);
-      if (g > 0) list.push_back({g, std::abs(geometry::edge_length(mesh, e) - m), e.idx()});
+    for (int i = 0; i < edges; ++i) {
+      const int g = gains[static_cast<std::size_t>(i)];
+      const TriMesh::EdgeHandle e(i);
+      if (g > 0) list.push_back({g, std::abs(geometry::edge_length(mesh, e) - m), i});
     }
     std::sort(list.begin(), list.end(), [](const Entry& x, const Entry& y) {
       if (x.gain != y.gain) return x.gain > y.gain;
@@ -209,11 +220,14 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
       int gain;
       int edge;
     };
+    // Gains and the E_val-neutral starts below on every thread, listed in edge order.
+    const int edges = static_cast<int>(mesh.n_edges());
+    std::vector<int> gains(static_cast<std::size_t>(edges));
+#pragma omp parallel for schedule(static) if (edges > 4096)
+    for (int i = 0; i < edges; ++i) gains[static_cast<std::size_t>(i)] = gain(TriMesh::EdgeHandle(i));
     std::vector<Entry> list;
-    for (auto e : mesh.edges()) {
-      const int g = gain(e);
-      if (g > 0) list.push_back({g, e.idx()});
-    }
+    for (int i = 0; i < edges; ++i)
+      if (gains[static_cast<std::size_t>(i)] > 0) list.push_back({gains[static_cast<std::size_t>(i)], i});
     std::sort(list.begin(), list.end(), [](const Entry& x, const Entry& y) {
       return x.gain != y.gain ? x.gain > y.gain : x.edge < y.edge;
     });
@@ -272,10 +286,19 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
         if (near[static_cast<std::size_t>(v.idx())]) return true;
       return false;
     };
-    for (auto e : mesh.edges())
-      if (!mesh.status(e).deleted() && !mesh.is_boundary(e) && improvement(quad(mesh, e), valence, ideal) == 0 &&
-          valence_defect(quad(mesh, e), valence, ideal) && is_near(quad(mesh, e)))
-        zero.push_back(e.idx());
+    {
+      const int now = static_cast<int>(mesh.n_edges());
+      std::vector<char> start(static_cast<std::size_t>(now), 0);
+#pragma omp parallel for schedule(static) if (now > 4096)
+      for (int i = 0; i < now; ++i) {
+        const TriMesh::EdgeHandle e(i);
+        start[static_cast<std::size_t>(i)] = !mesh.status(e).deleted() && !mesh.is_boundary(e) &&
+                                             improvement(quad(mesh, e), valence, ideal) == 0 &&
+                                             valence_defect(quad(mesh, e), valence, ideal) && is_near(quad(mesh, e));
+      }
+      for (int i = 0; i < now; ++i)
+        if (start[static_cast<std::size_t>(i)]) zero.push_back(i);
+    }
     // Depth-first: flip `e` (E_val unchanged), then look at the edges at its quad's vertices for a flip
     // lowering E_val (kept with the whole chain if settle() accepts), else go one E_val-neutral flip deeper.
     std::vector<TriMesh::EdgeHandle> chain;
