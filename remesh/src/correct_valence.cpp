@@ -102,12 +102,12 @@ std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep) {
   std::vector<int> gains;
   for (int pass = 0; pass < 100; ++pass) {
     // The gains of every edge on every thread, listed in edge order (the same list for any thread count).
-    const int edges = static_cast<int>(mesh.n_edges());
-    gains.resize(static_cast<std::size_t>(edges));
-#pragma omp parallel for schedule(static) if (edges > 4096)
-    for (int i = 0; i < edges; ++i) gains[static_cast<std::size_t>(i)] = gain(TriMesh::EdgeHandle(i));
+    const int edge_count = static_cast<int>(mesh.n_edges());
+    gains.resize(static_cast<std::size_t>(edge_count));
+#pragma omp parallel for schedule(static) if (edge_count > 4096)
+    for (int i = 0; i < edge_count; ++i) gains[static_cast<std::size_t>(i)] = gain(TriMesh::EdgeHandle(i));
     std::vector<Entry> list;
-    for (int i = 0; i < edges; ++i) {
+    for (int i = 0; i < edge_count; ++i) {
       const int g = gains[static_cast<std::size_t>(i)];
       const TriMesh::EdgeHandle e(i);
       if (g > 0) list.push_back({g, std::abs(geometry::edge_length(mesh, e) - m), i});
@@ -221,12 +221,12 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
       int edge;
     };
     // Gains and the E_val-neutral starts below on every thread, listed in edge order.
-    const int edges = static_cast<int>(mesh.n_edges());
-    std::vector<int> gains(static_cast<std::size_t>(edges));
-#pragma omp parallel for schedule(static) if (edges > 4096)
-    for (int i = 0; i < edges; ++i) gains[static_cast<std::size_t>(i)] = gain(TriMesh::EdgeHandle(i));
+    const int edge_count = static_cast<int>(mesh.n_edges());
+    std::vector<int> gains(static_cast<std::size_t>(edge_count));
+#pragma omp parallel for schedule(static) if (edge_count > 4096)
+    for (int i = 0; i < edge_count; ++i) gains[static_cast<std::size_t>(i)] = gain(TriMesh::EdgeHandle(i));
     std::vector<Entry> list;
-    for (int i = 0; i < edges; ++i)
+    for (int i = 0; i < edge_count; ++i)
       if (gains[static_cast<std::size_t>(i)] > 0) list.push_back({gains[static_cast<std::size_t>(i)], i});
     std::sort(list.begin(), list.end(), [](const Entry& x, const Entry& y) {
       return x.gain != y.gain ? x.gain > y.gain : x.edge < y.edge;
