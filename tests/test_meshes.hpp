@@ -1,5 +1,6 @@
 #pragma once
 // Helpers shared by the remesher tests.
+#include <random>
 #include <vector>
 
 #include "carbonmesh/remesh/metrics.hpp"
@@ -21,6 +22,15 @@ inline TriMesh stretched(TriMesh mesh, int axis, double factor) {
     p[axis] *= factor;
     mesh.set_point(v, p);
   }
+  return mesh;
+}
+
+// `mesh` with every vertex moved along its position vector by a factor 1 + N(0, sigma): a sphere centred at the
+// origin with radial noise (fixed seed).
+inline TriMesh radial_noise(TriMesh mesh, double sigma, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * (1 + noise(rng)));
   return mesh;
 }
 

@@ -8,7 +8,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -474,10 +473,7 @@ TEST(Remesher, ACollapsingSurfaceStopsTheLoopAndWhatIsCutOffIsReported) {
 
   // Noise bridged in the first iterations takes area too, and then stops taking it: no erosion. (With 15% radial
   // noise this sphere keeps about 40% of its area; a threshold on the area alone stopped its loop at iteration 3.)
-  TriMesh noisy = scaled(make_icosphere({10.0, 4}), 0.755);
-  std::mt19937 rng(3);
-  std::normal_distribution<double> noise(0.0, 0.15);
-  for (auto v : noisy.vertices()) noisy.set_point(v, noisy.point(v) * (1 + noise(rng)));
+  TriMesh noisy = test::radial_noise(scaled(make_icosphere({10.0, 4}), 0.755), 0.15, 3);
   const double noisy_area = surface_area(noisy);
   settings.iterations = 40;
   const RemeshResult bridged = remesh(noisy, settings);
@@ -490,10 +486,7 @@ TEST(Remesher, ACollapsingSurfaceStopsTheLoopAndWhatIsCutOffIsReported) {
 // snap raised the farthest input vertex in 10 of 16 seeds (here from 1.348 to 1.471) before each move was checked
 // against the input vertices nearest its faces (none may end farther than the farthest one was).
 TEST(SnapToFeatures, NeverMovesTheSurfaceFartherFromTheInput) {
-  TriMesh input = scaled(make_icosphere({10.0, 4}), 0.755);
-  std::mt19937 rng(1);
-  std::normal_distribution<double> noise(0.0, 0.04);
-  for (auto v : input.vertices()) input.set_point(v, input.point(v) * (1 + noise(rng)));
+  const TriMesh input = test::radial_noise(scaled(make_icosphere({10.0, 4}), 0.755), 0.04, 1);
   TriMesh mesh = input;
   RemeshSettings settings;
   settings.snap_features = settings.fit_surface = false;
@@ -514,10 +507,7 @@ TEST(SnapToFeatures, GivesTheSameMeshOnTwoThreadsAsOnOne) {
 #ifndef _OPENMP
   GTEST_SKIP() << "built without OpenMP";
 #else
-  TriMesh input = scaled(make_icosphere({6.0, 3}), 0.63);
-  std::mt19937 rng(1);
-  std::normal_distribution<double> noise(0.0, 0.04);
-  for (auto v : input.vertices()) input.set_point(v, input.point(v) * (1 + noise(rng)));
+  const TriMesh input = test::radial_noise(scaled(make_icosphere({6.0, 3}), 0.63), 0.04, 1);
   TriMesh converged = input;
   RemeshSettings settings;
   settings.snap_features = settings.fit_surface = false;
