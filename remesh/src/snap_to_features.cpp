@@ -14,6 +14,7 @@
 // tried again in a new neighbourhood. Moves far enough apart that neither can see the other run on all threads
 // (Schedule below), with the result of one thread taking them in order.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <limits>
@@ -23,6 +24,8 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+
+#include <spdlog/spdlog.h>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
@@ -39,6 +42,7 @@ constexpr std::size_t kChoices = 2;  // remeshed vertices tried per input vertex
                                      // third choice was kept in 5 of 105 tries)
 constexpr int kPasses = 3;           // relax-and-project passes before a move is given up (kept at the first
                                      // clean one)
+constexpr double kProgressSeconds = 1.0;  // a round that takes longer is logged at info level (else debug)
 constexpr std::size_t kHopelessFlaws = 8;  // more new flaws than this after a pass: given up at once (no kept move on
                                            // the seven seed-protocol models or a sphere with 2% noise had more than 8
                                            // after any pass; 25-39% of the failed ones had after the first)
@@ -367,6 +371,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   std::vector<int> candidates;
   for (const auto& d : distances) result.max_before = std::max(result.max_before, d.d);
   for (int round = 0; round < kRounds; ++round) {
+    const auto round_start = std::chrono::steady_clock::now();
     candidates.clear();
     for (std::size_t i = 0; i < distances.size(); ++i)
       if (distances[i].d > tolerance && distances[i].face >= 0 && !state.tried[i])
@@ -407,6 +412,11 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     }
     result.snapped += snapped;
     result.rounds = round + 1;
+    // Progress on a long snap (a noisy scan: thousands of input vertices off the surface, each a move to try).
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
+    spdlog::log(seconds >= kProgressSeconds ? spdlog::level::info : spdlog::level::debug,
+                "snap to features, round {}: {} of {} input vertices snapped, {:.1f}s", round + 1, snapped,
+                candidates.size(), seconds);
     if (snapped == 0) break;
   }
   for (const auto& w : workers) result.tries += w.tries;
