@@ -6,6 +6,7 @@
 
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "per_element.hpp"
 #include "remesh_geometry.hpp"
 
 namespace carbonmesh {
@@ -99,15 +100,11 @@ std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep) {
       if (touched[static_cast<std::size_t>(v.idx())] > at) return false;
     return true;
   };
-  std::vector<int> gains;
   for (int pass = 0; pass < 100; ++pass) {
     // The gains of every edge on every thread, listed in edge order (the same list for any thread count).
-    const int edge_count = static_cast<int>(mesh.n_edges());
-    gains.resize(static_cast<std::size_t>(edge_count));
-#pragma omp parallel for schedule(static) if (edge_count > 4096)
-    for (int i = 0; i < edge_count; ++i) gains[static_cast<std::size_t>(i)] = gain(TriMesh::EdgeHandle(i));
+    const std::vector<int> gains = per_element(mesh.n_edges(), [&](int i) { return gain(TriMesh::EdgeHandle(i)); });
     std::vector<Entry> list;
-    for (int i = 0; i < edge_count; ++i) {
+    for (int i = 0; i < static_cast<int>(gains.size()); ++i) {
       const int g = gains[static_cast<std::size_t>(i)];
       const TriMesh::EdgeHandle e(i);
       if (g > 0) list.push_back({g, std::abs(geometry::edge_length(mesh, e) - m), i});
@@ -221,12 +218,9 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
       int edge;
     };
     // Gains and the E_val-neutral starts below on every thread, listed in edge order.
-    const int edge_count = static_cast<int>(mesh.n_edges());
-    std::vector<int> gains(static_cast<std::size_t>(edge_count));
-#pragma omp parallel for schedule(static) if (edge_count > 4096)
-    for (int i = 0; i < edge_count; ++i) gains[static_cast<std::size_t>(i)] = gain(TriMesh::EdgeHandle(i));
+    const std::vector<int> gains = per_element(mesh.n_edges(), [&](int i) { return gain(TriMesh::EdgeHandle(i)); });
     std::vector<Entry> list;
-    for (int i = 0; i < edge_count; ++i)
+    for (int i = 0; i < static_cast<int>(gains.size()); ++i)
       if (gains[static_cast<std::size_t>(i)] > 0) list.push_back({gains[static_cast<std::size_t>(i)], i});
     std::sort(list.begin(), list.end(), [](const Entry& x, const Entry& y) {
       return x.gain != y.gain ? x.gain > y.gain : x.edge < y.edge;
@@ -286,19 +280,13 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
         if (near[static_cast<std::size_t>(v.idx())]) return true;
       return false;
     };
-    {
-      const int now = static_cast<int>(mesh.n_edges());
-      std::vector<char> start(static_cast<std::size_t>(now), 0);
-#pragma omp parallel for schedule(static) if (now > 4096)
-      for (int i = 0; i < now; ++i) {
-        const TriMesh::EdgeHandle e(i);
-        start[static_cast<std::size_t>(i)] = !mesh.status(e).deleted() && !mesh.is_boundary(e) &&
-                                             improvement(quad(mesh, e), valence, ideal) == 0 &&
-                                             valence_defect(quad(mesh, e), valence, ideal) && is_near(quad(mesh, e));
-      }
-      for (int i = 0; i < now; ++i)
-        if (start[static_cast<std::size_t>(i)]) zero.push_back(i);
-    }
+    const std::vector<char> start = per_element(mesh.n_edges(), [&](int i) -> char {
+      const TriMesh::EdgeHandle e(i);
+      return !mesh.status(e).deleted() && !mesh.is_boundary(e) && improvement(quad(mesh, e), valence, ideal) == 0 &&
+             valence_defect(quad(mesh, e), valence, ideal) && is_near(quad(mesh, e));
+    });
+    for (int i = 0; i < static_cast<int>(start.size()); ++i)
+      if (start[static_cast<std::size_t>(i)]) zero.push_back(i);
     // Depth-first: flip `e` (E_val unchanged), then look at the edges at its quad's vertices for a flip
     // lowering E_val (kept with the whole chain if settle() accepts), else go one E_val-neutral flip deeper.
     std::vector<TriMesh::EdgeHandle> chain;

@@ -9,6 +9,8 @@
 #include <numeric>
 #include <vector>
 
+#include "per_element.hpp"
+
 namespace carbonmesh {
 namespace {
 
@@ -28,17 +30,6 @@ struct DisjointSets {
 
 double percent(std::size_t part, std::size_t whole) {
   return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
-}
-
-// f(i) for i in [0, n), computed on every thread into its own slot (small meshes on one).
-template <typename F>
-auto per_element(std::size_t n, F&& f) {
-  using R = decltype(f(0));
-  std::vector<R> out(n);
-  const int count = static_cast<int>(n);
-#pragma omp parallel for schedule(static) if (count > 4096)
-  for (int i = 0; i < count; ++i) out[static_cast<std::size_t>(i)] = f(i);
-  return out;
 }
 
 }  // namespace
@@ -119,24 +110,26 @@ int ideal_valence(const TriMesh& mesh, TriMesh::VertexHandle v) { return mesh.is
 
 ValenceStats valence_stats(const TriMesh& mesh) {
   ValenceStats s;
-  // Valences on every thread (negative: a border vertex, -1 - valence; deleted: none), counted in vertex order.
-  constexpr int kDeleted = std::numeric_limits<int>::min();
-  const std::vector<int> valences = per_element(mesh.n_vertices(), [&](int i) {
+  // Valences on every thread, counted in vertex order.
+  struct Vertex {
+    int valence = -1;  // -1: deleted
+    int ideal = 0;
+    bool border = false;
+  };
+  const std::vector<Vertex> vertices = per_element(mesh.n_vertices(), [&](int i) {
     const TriMesh::VertexHandle v(i);
-    if (mesh.status(v).deleted()) return kDeleted;
-    const int valence = static_cast<int>(mesh.valence(v));
-    return mesh.is_boundary(v) ? -1 - valence : valence;
+    if (mesh.status(v).deleted()) return Vertex{};
+    return Vertex{static_cast<int>(mesh.valence(v)), ideal_valence(mesh, v), mesh.is_boundary(v)};
   });
   std::vector<std::size_t> interior, boundary;  // counts by valence
   std::size_t n = 0, regular = 0, eval0 = 0, eval1 = 0, eval_gt1 = 0;
-  for (const int code : valences) {
-    if (code == kDeleted) continue;
-    const bool border = code < 0;
-    const int valence = border ? -1 - code : code;
-    auto& counts = border ? boundary : interior;
-    if (counts.size() <= static_cast<std::size_t>(valence)) counts.resize(static_cast<std::size_t>(valence) + 1, 0);
-    ++counts[static_cast<std::size_t>(valence)];
-    const int d = (border ? 4 : 6) - valence;  // ideal_valence()
+  for (const Vertex& x : vertices) {
+    if (x.valence < 0) continue;
+    auto& counts = x.border ? boundary : interior;
+    const auto valence = static_cast<std::size_t>(x.valence);
+    if (counts.size() <= valence) counts.resize(valence + 1, 0);
+    ++counts[valence];
+    const int d = x.ideal - x.valence;
     const int eval = d * d;
     ++n;
     s.eval_total += static_cast<std::size_t>(eval);

@@ -30,7 +30,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
   struct Options {
     std::string in, out, log;
     double emin = 0, emax = 0;
-    int iterations = 150, kl = 2, kn = 2, p = 0, coarse_levels = 0, stall_limit = 40;
+    int iterations = 150, kl = 2, kn = 2, p = 0, coarse_levels = 0, stall_limit = RemeshSettings{}.stall_limit;
     double l = 0.5;
     ParametrizationWeights weights = ParametrizationWeights::MeanValue;
     bool json = false, repair = false, no_fit = false, no_snap = false, no_flips = false;
@@ -51,7 +51,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
       ->default_val(0.5)->check(CLI::NonNegativeNumber);
   cmd->add_option("--stall-limit", opt->stall_limit,
                   "stop after this many iterations without a better mesh and post-process the best one (0: never)")
-      ->default_val(40)->check(CLI::NonNegativeNumber);
+      ->default_val(RemeshSettings{}.stall_limit)->check(CLI::NonNegativeNumber);
   const std::map<std::string, ParametrizationWeights> weights{{"mean-value", ParametrizationWeights::MeanValue},
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};
   cmd->add_option("--weights", opt->weights, "parametrization weights: mean-value or shape-preserving")
