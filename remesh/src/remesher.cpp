@@ -286,8 +286,11 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     const bool nonlinear_phase = troubling_percent(edges) <= l && !kick && !restart;
     IntermediateInterval step = intermediate_interval(edges.mean, s.emin, s.emax);
     if (nonlinear_phase) step = {s.emin - 0.25 * (s.emax - s.emin), s.emax + 0.25 * (s.emax - s.emin)};
+    const double t_stellar = seconds();
     const StellarResult stellar = stellar_operations(mesh, step.emin, step.emax, m);
+    const double t_gc = seconds();
     if (stellar.collapses > 0) mesh.garbage_collection();  // only collapses delete elements
+    const double t_order = seconds();
     // Splits append elements and garbage collection fills holes from the ends: once they have touched a
     // fifth of the vertices, the mesh is put back in spatial memory order (armadillo: 2x faster iterations).
     churn += stellar.splits + stellar.collapses;
@@ -295,9 +298,12 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       spatial_order(mesh);
       churn = 0;
     }
+    const double t_flips = seconds();
     const std::size_t flips = correct_valence(mesh, m, nonlinear_phase ? &interval : nullptr);
-    spdlog::debug("iteration {}: interval [{:.4f}, {:.4f}], {} splits, {} collapses, {} flips", iteration + 1,
-                  step.emin, step.emax, stellar.splits, stellar.collapses, flips);
+    spdlog::debug("iteration {}: interval [{:.4f}, {:.4f}], {} splits, {} collapses, {} flips; stellar {:.3f}s, "
+                  "garbage collection {:.3f}s, memory order {:.3f}s, flips {:.3f}s",
+                  iteration + 1, step.emin, step.emax, stellar.splits, stellar.collapses, flips, t_gc - t_stellar,
+                  t_order - t_gc, t_flips - t_order, seconds() - t_flips);
     edges = edge_stats(mesh, interval);
     const bool nonlinear = troubling_percent(edges) <= l && !restart;
     const double t_smooth = seconds();
