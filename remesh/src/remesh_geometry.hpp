@@ -23,13 +23,14 @@ inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 // Smallest interior angle (radians) of a triangle; 0 for a degenerate one.
 inline double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+  // The cosine of the angle at p; the smallest angle is the arccosine of the largest (one acos, not three).
+  auto cosine = [](const Vec3& p, const Vec3& q, const Vec3& r) {
     const Vec3 u = q - p, v = r - p;
     const double lu = u.norm(), lv = v.norm();
-    if (lu <= 0 || lv <= 0) return 0.0;
-    return std::acos(std::clamp(OpenMesh::dot(u, v) / (lu * lv), -1.0, 1.0));
+    if (lu <= 0 || lv <= 0) return 1.0;
+    return std::clamp(OpenMesh::dot(u, v) / (lu * lv), -1.0, 1.0);
   };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+  return std::acos(std::max({cosine(a, b, c), cosine(b, c, a), cosine(c, a, b)}));
 }
 
 // Whether flipping edge a-b of the faces (a, b, c) and (b, a, d) to c-d keeps their shape (section 3.5.3): the
