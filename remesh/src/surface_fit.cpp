@@ -73,7 +73,10 @@ std::vector<Sample> sample_residuals(const TriMesh& mesh, const Tree& tree, cons
       const auto& b = kQuadrature[q];
       const Vec3 x = b[0] * p[0] + b[1] * p[1] + b[2] * p[2];
       auto& hint = hints[3 * static_cast<std::size_t>(i) + q];
-      hint = hinted ? tree.closest_point_and_primitive(to_point(x), hint) : tree.closest_point_and_primitive(to_point(x));
+      // Without a hint from the previous evaluation, the face's previous point gives one (it is near).
+      if (hinted) hint = tree.closest_point_and_primitive(to_point(x), hint);
+      else if (q > 0) hint = tree.closest_point_and_primitive(to_point(x), hints[3 * static_cast<std::size_t>(i) + q - 1]);
+      else hint = tree.closest_point_and_primitive(to_point(x));
       const auto& [closest, primitive] = hint;
       const Triangle& t = *primitive;
       Vec3 ns = to_vec(CGAL::ORIGIN + CGAL::cross_product(t[1] - t[0], t[2] - t[0]));
