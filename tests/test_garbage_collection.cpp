@@ -12,48 +12,55 @@
 namespace carbonmesh {
 namespace {
 
-// Every handle, point, normal, status and an integer property of each kind of element, in element order.
-std::vector<long> state_of(TriMesh& mesh) {
-  OpenMesh::VPropHandleT<int> vid;
-  OpenMesh::EPropHandleT<int> eid;
-  OpenMesh::HPropHandleT<int> hid;
-  OpenMesh::FPropHandleT<int> fid;
-  mesh.get_property_handle(vid, "test:v");
-  mesh.get_property_handle(eid, "test:e");
-  mesh.get_property_handle(hid, "test:h");
-  mesh.get_property_handle(fid, "test:f");
+// An integer property on each kind of element, set to the element's index before the garbage collection.
+struct Labels {
+  OpenMesh::VPropHandleT<int> v;
+  OpenMesh::EPropHandleT<int> e;
+  OpenMesh::HPropHandleT<int> h;
+  OpenMesh::FPropHandleT<int> f;
+
+  void add(TriMesh& mesh) {
+    mesh.add_property(v, "test:v");
+    mesh.add_property(e, "test:e");
+    mesh.add_property(h, "test:h");
+    mesh.add_property(f, "test:f");
+    for (auto x : mesh.all_vertices()) mesh.property(v, x) = x.idx();
+    for (auto x : mesh.all_edges()) mesh.property(e, x) = x.idx();
+    for (auto x : mesh.all_halfedges()) mesh.property(h, x) = x.idx();
+    for (auto x : mesh.all_faces()) mesh.property(f, x) = x.idx();
+  }
+  void find(const TriMesh& mesh) {
+    mesh.get_property_handle(v, "test:v");
+    mesh.get_property_handle(e, "test:e");
+    mesh.get_property_handle(h, "test:h");
+    mesh.get_property_handle(f, "test:f");
+  }
+};
+
+// Every handle, point, normal, status and label of each kind of element, in element order.
+std::vector<long> state_of(const TriMesh& mesh) {
+  Labels id;
+  id.find(mesh);
   std::vector<long> s{static_cast<long>(mesh.n_vertices()), static_cast<long>(mesh.n_edges()),
                       static_cast<long>(mesh.n_faces())};
   auto bits = [](double x) { return static_cast<long>(std::hash<double>{}(x)); };
   for (auto v : mesh.all_vertices()) {
-    s.insert(s.end(), {mesh.halfedge_handle(v).idx(), static_cast<long>(mesh.status(v).bits()), mesh.property(vid, v)});
+    s.insert(s.end(),
+             {mesh.halfedge_handle(v).idx(), static_cast<long>(mesh.status(v).bits()), mesh.property(id.v, v)});
     for (int k = 0; k < 3; ++k) s.insert(s.end(), {bits(mesh.point(v)[k]), bits(mesh.normal(v)[k])});
   }
   for (auto h : mesh.all_halfedges())
     s.insert(s.end(), {mesh.to_vertex_handle(h).idx(), mesh.next_halfedge_handle(h).idx(),
                        mesh.prev_halfedge_handle(h).idx(), mesh.face_handle(h).idx(),
-                       static_cast<long>(mesh.status(h).bits()), mesh.property(hid, h)});
-  for (auto e : mesh.all_edges()) s.insert(s.end(), {static_cast<long>(mesh.status(e).bits()), mesh.property(eid, e)});
+                       static_cast<long>(mesh.status(h).bits()), mesh.property(id.h, h)});
+  for (auto e : mesh.all_edges())
+    s.insert(s.end(), {static_cast<long>(mesh.status(e).bits()), mesh.property(id.e, e)});
   for (auto f : mesh.all_faces()) {
-    s.insert(s.end(), {mesh.halfedge_handle(f).idx(), static_cast<long>(mesh.status(f).bits()), mesh.property(fid, f)});
+    s.insert(s.end(),
+             {mesh.halfedge_handle(f).idx(), static_cast<long>(mesh.status(f).bits()), mesh.property(id.f, f)});
     for (int k = 0; k < 3; ++k) s.push_back(bits(mesh.normal(f)[k]));
   }
   return s;
-}
-
-void label(TriMesh& mesh) {
-  OpenMesh::VPropHandleT<int> vid;
-  OpenMesh::EPropHandleT<int> eid;
-  OpenMesh::HPropHandleT<int> hid;
-  OpenMesh::FPropHandleT<int> fid;
-  mesh.add_property(vid, "test:v");
-  mesh.add_property(eid, "test:e");
-  mesh.add_property(hid, "test:h");
-  mesh.add_property(fid, "test:f");
-  for (auto v : mesh.all_vertices()) mesh.property(vid, v) = v.idx();
-  for (auto e : mesh.all_edges()) mesh.property(eid, e) = e.idx();
-  for (auto h : mesh.all_halfedges()) mesh.property(hid, h) = h.idx();
-  for (auto f : mesh.all_faces()) mesh.property(fid, f) = f.idx();
 }
 
 // Random splits (new elements at the ends), then random collapses of about `share` of the edges.
@@ -63,7 +70,8 @@ void churn(TriMesh& mesh, double share, unsigned seed) {
   for (int i = 0; i < splits; ++i) {
     const TriMesh::EdgeHandle e(static_cast<int>(random() % mesh.n_edges()));
     const auto h = mesh.halfedge_handle(e, 0);
-    mesh.split(e, mesh.add_vertex(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)))));
+    const Vec3 mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+    mesh.split(e, mesh.add_vertex(mid));
   }
   mesh.update_normals();
   const int collapses = static_cast<int>(share * static_cast<double>(mesh.n_edges()));
@@ -77,7 +85,7 @@ void churn(TriMesh& mesh, double share, unsigned seed) {
 
 void expect_same_as_openmesh(TriMesh mesh, double share, unsigned seed, const std::string& what) {
   churn(mesh, share, seed);
-  label(mesh);
+  Labels().add(mesh);
   TriMesh expected = mesh;
   expected.garbage_collection();
   collect_garbage(mesh);
@@ -109,7 +117,7 @@ TEST(GarbageCollection, SameMeshAsOpenMeshWithBordersAndIsolatedVertices) {
 
 TEST(GarbageCollection, NothingDeletedLeavesTheMeshAsItWas) {
   TriMesh mesh = make_icosphere({10.0, 2});
-  label(mesh);
+  Labels().add(mesh);
   const std::vector<long> before = state_of(mesh);
   collect_garbage(mesh);
   EXPECT_EQ(state_of(mesh), before);

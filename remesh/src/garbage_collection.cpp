@@ -128,7 +128,8 @@ void collect_garbage(TriMesh& mesh) {
   fields.reserve(hs.size());
   for (int old : hs) {
     const HH h(map(hmap, old));
-    fields.push_back({h, mesh.to_vertex_handle(h).idx(), mesh.next_halfedge_handle(h).idx(), mesh.face_handle(h).idx()});
+    fields.push_back(
+        {h, mesh.to_vertex_handle(h).idx(), mesh.next_halfedge_handle(h).idx(), mesh.face_handle(h).idx()});
   }
   for (const auto& [h, to, next, face] : fields) {
     mesh.set_vertex_handle(h, VH(map(vmap, to)));

@@ -72,10 +72,11 @@ std::vector<Sample> sample_residuals(const TriMesh& mesh, const Tree& tree, cons
     for (std::size_t q = 0; q < kQuadrature.size(); ++q) {
       const auto& b = kQuadrature[q];
       const Vec3 x = b[0] * p[0] + b[1] * p[1] + b[2] * p[2];
-      auto& hint = hints[3 * static_cast<std::size_t>(i) + q];
+      const std::size_t slot = 3 * static_cast<std::size_t>(i) + q;
+      auto& hint = hints[slot];
       // Without a hint from the previous evaluation, the face's previous point gives one (it is near).
       if (hinted) hint = tree.closest_point_and_primitive(to_point(x), hint);
-      else if (q > 0) hint = tree.closest_point_and_primitive(to_point(x), hints[3 * static_cast<std::size_t>(i) + q - 1]);
+      else if (q > 0) hint = tree.closest_point_and_primitive(to_point(x), hints[slot - 1]);
       else hint = tree.closest_point_and_primitive(to_point(x));
       const auto& [closest, primitive] = hint;
       const Triangle& t = *primitive;
@@ -83,7 +84,7 @@ std::vector<Sample> sample_residuals(const TriMesh& mesh, const Tree& tree, cons
       const double l = ns.norm();
       ns = l > 0 ? ns / l : face_normal;
       if (OpenMesh::dot(ns, face_normal) < 0) ns = -ns;
-      Sample& s = samples[3 * static_cast<std::size_t>(i) + q];
+      Sample& s = samples[slot];
       s.vertex = v;
       s.weight = area / 3;
       s.residual = OpenMesh::dot(x - to_vec(closest), ns);
