@@ -214,11 +214,15 @@ bool collapse_edge(TriMesh& mesh, TriMesh::EdgeHandle e, double max_edge, double
     const HH h = mesh.halfedge_handle(e, side);
     const VH v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
     if (!collapse_keeps_topology(mesh, h)) continue;
+    auto fits = [&](const Vec3& p) { return collapse_geometry_ok(mesh, h, p, max_edge); };
     Vec3 position;
+    bool ok = false;  // each position is checked once
     if (mesh.is_boundary(e)) {
       position = 0.5 * (mesh.point(v0) + mesh.point(v1));
+      ok = fits(position);
     } else if (mesh.is_boundary(v1)) {
       position = mesh.point(v1);
+      ok = fits(position);
     } else {
       thread_local std::vector<Vec3> nb;  // (no allocation per collapse)
       nb.clear();
@@ -228,9 +232,10 @@ bool collapse_edge(TriMesh& mesh, TriMesh::EdgeHandle e, double max_edge, double
       const Vec3 mid = 0.5 * (mesh.point(v0) + mesh.point(v1));
       const Vec3 n = geometry::vertex_normal(mesh, v0) + geometry::vertex_normal(mesh, v1);
       position = minimize_length_energy(nb, mid, n, m);
-      if (!collapse_geometry_ok(mesh, h, position, max_edge)) position = mid;
+      ok = fits(position);
+      if (!ok) ok = fits(position = mid);
     }
-    if (!collapse_geometry_ok(mesh, h, position, max_edge)) continue;
+    if (!ok) continue;
     mesh.collapse(h);
     mesh.set_point(v1, position);
     return true;
