@@ -11,6 +11,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "permuted_ldlt.hpp"
 #include "remesh_geometry.hpp"
 
 namespace carbonmesh {
@@ -197,13 +198,13 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   };
   // J^T J is sparse (2x2 blocks of the variables an edge joins). A small region (the usual kn-star: about 24
   // unknowns) is solved dense; a large one keeps its pattern once, each term with pointers to its entries,
-  // and a sparse LDL^T analysed once.
+  // and a sparse LDL^T analysed once (PermutedLDLT: Eigen's fill-reducing permutation applied once per region).
   const bool dense = dim <= kDenseUnknowns;
   Eigen::MatrixXd jtj_dense, h_dense;
   Eigen::LLT<Eigen::MatrixXd> llt_dense;
-  Eigen::SparseMatrix<double> jtj, h;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-  std::vector<double*> entry, diagonal;
+  Eigen::SparseMatrix<double> jtj;
+  PermutedLDLT ldlt;
+  std::vector<double*> entry;
   if (dense) {
     jtj_dense.resize(dim, dim);
   } else {
@@ -225,10 +226,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       for (int p = 0; p < c; ++p)
         for (int q = 0; q < c; ++q) entry[16 * k + static_cast<std::size_t>(4 * p + q)] = &jtj.coeffRef(idx[p], idx[q]);
     }
-    diagonal.resize(static_cast<std::size_t>(dim));
-    for (int i = 0; i < dim; ++i) diagonal[static_cast<std::size_t>(i)] = &jtj.coeffRef(i, i);
-    h = jtj;
-    ldlt.analyzePattern(h);
+    ldlt.analyze(jtj);
   }
   Eigen::VectorXd jtr(dim), step(dim);
   for (int it = 0; it < 20 && current > 0; ++it) {
@@ -274,13 +272,9 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
         if (llt_dense.info() != Eigen::Success) break;
         step = -llt_dense.solve(jtr);
       } else {
-        std::copy(jtj.valuePtr(), jtj.valuePtr() + jtj.nonZeros(), h.valuePtr());
-        for (int i = 0; i < dim; ++i) {
-          const double jj = *diagonal[static_cast<std::size_t>(i)];
-          h.valuePtr()[diagonal[static_cast<std::size_t>(i)] - jtj.valuePtr()] += mu * (jj + 1e-12 * (1 + m2));
-        }
-        ldlt.factorize(h);
-        step = -ldlt.solve(jtr);
+        if (!ldlt.factorize(jtj, mu, 1e-12 * (1 + m2))) break;
+        ldlt.solve(jtr, step);
+        step = -step;
       }
       if (!step.allFinite()) break;
       const Eigen::VectorXd trial = x + step;
