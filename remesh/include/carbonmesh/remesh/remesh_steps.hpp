@@ -82,7 +82,8 @@ void collect_k_star(const TriMesh& mesh, TriMesh::VertexHandle v, int k, KStar& 
 
 // Floater parametrization of a k-star homeomorphic to a disk: border on a circle (arc length kept),
 // interior vertices as convex combinations of their neighbours (Eq 3.1-3.3, weights Eq 3.4-3.5 or
-// shape-preserving), solved with an Eigen sparse LU. `uv` gets one point per star vertex.
+// shape-preserving), solved with Eigen's LU (dense for up to 40 interior vertices, sparse beyond). `uv` gets one
+// point per star vertex.
 // Returns false when the star is not a disk (the caller falls back to the tangential Laplacian).
 bool compute_parametrization(const TriMesh& mesh, const KStar& star, ParametrizationWeights weights,
                              StarScratch& scratch, std::vector<Eigen::Vector2d>& uv);
