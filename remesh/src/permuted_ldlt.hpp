@@ -18,10 +18,13 @@ class PermutedLDLT {
 
   // The pattern of `a` (compressed, square; the lower triangle and the diagonal are read).
   void analyze(const Matrix& a) {
-    Eigen::SimplicialLDLT<Matrix> amd;  // only for its fill-reducing permutation
-    amd.analyzePattern(a);
-    p_ = amd.permutationP();
-    pinv_ = amd.permutationPinv();
+    // The fill-reducing permutation as SimplicialLDLT's analyzePattern() computes it (AMD of the symmetric matrix).
+    {
+      Matrix symmetric;
+      symmetric = a.selfadjointView<Eigen::Lower>();
+      Eigen::AMDOrdering<int>()(symmetric, pinv_);
+    }
+    p_ = pinv_.inverse();
     // The permuted upper triangle Eigen's factorize() builds, with each value the index of its source entry.
     Matrix index = a;
     for (Eigen::Index k = 0; k < index.nonZeros(); ++k) index.valuePtr()[k] = static_cast<double>(k);
