@@ -258,8 +258,7 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
     if (next_on_border[i] < 0) unknown[i] = count++;
   thread_local std::vector<Eigen::Triplet<double>> triplets;
   triplets.clear();
-  thread_local Eigen::MatrixX2d rhs;  // reused: no allocation per star
-  rhs.setZero(count, 2);
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(count, 2);
   thread_local std::vector<Vec3> ring;
   thread_local std::vector<int> ring_local;
   thread_local std::vector<double> lambda;
@@ -308,29 +307,17 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
   Eigen::MatrixX2d x;
   if (count <= kDenseLimit) {
     // Small stars (kl <= 2): profiling showed SparseLU's symbolic analysis and allocations dominating the
-    // whole filter, so the same system is solved densely, in fixed-size matrices for the usual sizes (a 2-star
-    // around a vertex of valence 5-7) and fixed-capacity (stack) ones otherwise; one right-hand side at a time
-    // (Eigen solves two at once with its blocked matrix kernels, at twice the instructions for these sizes).
-    auto solve = [&](auto a) {
-      for (const auto& t : triplets) a(t.row(), t.col()) += t.value();
-      using Dense = decltype(a);
-      const Eigen::PartialPivLU<Dense> lu(a);
-      using Column = Eigen::Matrix<double, Dense::RowsAtCompileTime, 1, 0, Dense::MaxRowsAtCompileTime, 1>;
-      const Column su = lu.solve(Column(rhs.col(0))), sv = lu.solve(Column(rhs.col(1)));
-      if (!su.allFinite() || !sv.allFinite()) return false;
-      for (std::size_t i = 0; i < n; ++i)
-        if (unknown[i] >= 0) uv[i] = Eigen::Vector2d(su[unknown[i]], sv[unknown[i]]);
-      return true;
-    };
-    switch (count) {
-      case 6: return solve(Eigen::Matrix<double, 6, 6>::Zero().eval());
-      case 7: return solve(Eigen::Matrix<double, 7, 7>::Zero().eval());
-      case 8: return solve(Eigen::Matrix<double, 8, 8>::Zero().eval());
-      default: {
-        using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kDenseLimit, kDenseLimit>;
-        return solve(Dense::Zero(count, count).eval());
-      }
-    }
+    // whole filter, so the same system is solved densely, in fixed-capacity (stack) matrices.
+    using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kDenseLimit, kDenseLimit>;
+    using Rhs = Eigen::Matrix<double, Eigen::Dynamic, 2, 0, kDenseLimit, 2>;
+    Dense a = Dense::Zero(count, count);
+    for (const auto& t : triplets) a(t.row(), t.col()) += t.value();
+    const Rhs b = rhs;
+    const Rhs solved = Eigen::PartialPivLU<Dense>(a).solve(b);
+    if (!solved.allFinite()) return false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (unknown[i] >= 0) uv[i] = solved.row(unknown[i]).transpose();
+    return true;
   } else {
     Eigen::SparseMatrix<double> a(count, count);
     a.setFromTriplets(triplets.begin(), triplets.end());
