@@ -214,6 +214,32 @@ TEST(Hausdorff, MeshToItselfIsZero) {
   EXPECT_LT(h.rms, 1e-9);
 }
 
+TEST(Hausdorff, MaximumIncludesTheVertices) {
+  // A pyramid over a flat square, against the square: the farthest point is the apex, at its height exactly, and no
+  // area sample lands on it.
+  TriMesh square, pyramid;
+  const double height = 2.0;
+  std::vector<TriMesh::VertexHandle> s, p;
+  for (const Vec3& c : {Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(10, 10, 0), Vec3(0, 10, 0)}) {
+    s.push_back(square.add_vertex(c));
+    p.push_back(pyramid.add_vertex(c));
+  }
+  square.add_face(s[0], s[1], s[2]);
+  square.add_face(s[0], s[2], s[3]);
+  const auto apex = pyramid.add_vertex(Vec3(4, 6, height));
+  for (std::size_t i = 0; i < 4; ++i) pyramid.add_face(p[i], p[(i + 1) % 4], apex);
+  const HausdorffResult h = hausdorff_distance(pyramid, square, {20000, 1});
+  EXPECT_TRUE(h.vertices);
+  EXPECT_NEAR(h.forward_max, height, 1e-12);
+  EXPECT_NEAR(h.max, height, 1e-12);
+  HausdorffSettings area_only{20000, 1};
+  area_only.vertices = false;
+  const HausdorffResult a = hausdorff_distance(pyramid, square, area_only);
+  EXPECT_FALSE(a.vertices);
+  EXPECT_LT(a.forward_max, height - 1e-3);
+  EXPECT_EQ(a.forward_rms, h.forward_rms);  // the RMS stays an area mean
+}
+
 TEST(Hausdorff, ShiftedCopyIsAtTheShift) {
   // A plane-like patch: a big flat square shifted along its normal by d is at distance d everywhere.
   TriMesh a, b;

@@ -54,6 +54,14 @@ std::pair<double, double> one_sided(const std::vector<Point>& points, const Tree
   return {std::sqrt(max2), points.empty() ? 0.0 : std::sqrt(sum2 / static_cast<double>(points.size()))};
 }
 
+// The vertices of the mesh's faces (isolated ones are no part of the surface).
+std::vector<Point> face_vertices(const TriMesh& mesh) {
+  std::vector<Point> points;
+  for (auto v : mesh.vertices())
+    if (!mesh.status(v).deleted() && !mesh.is_isolated(v)) points.push_back(to_point(mesh.point(v)));
+  return points;
+}
+
 }  // namespace
 
 HausdorffResult hausdorff_distance(const TriMesh& mesh, const TriMesh& reference, const HausdorffSettings& settings) {
@@ -69,6 +77,11 @@ HausdorffResult hausdorff_distance(const TriMesh& mesh, const TriMesh& reference
   const auto samples_b = sample(b, settings.samples, settings.seed + 1);
   std::tie(r.forward_max, r.forward_rms) = one_sided(samples_a, tree_b);
   std::tie(r.backward_max, r.backward_rms) = one_sided(samples_b, tree_a);
+  if (settings.vertices) {
+    r.forward_max = std::max(r.forward_max, one_sided(face_vertices(mesh), tree_b).first);
+    r.backward_max = std::max(r.backward_max, one_sided(face_vertices(reference), tree_a).first);
+    r.vertices = true;
+  }
   r.max = std::max(r.forward_max, r.backward_max);
   r.rms = std::max(r.forward_rms, r.backward_rms);
   r.samples_per_side = settings.samples;
@@ -82,7 +95,8 @@ nlohmann::json to_json(const HausdorffResult& h) {
           {"forward_rms", h.forward_rms},
           {"backward_max", h.backward_max},
           {"backward_rms", h.backward_rms},
-          {"samples_per_side", h.samples_per_side}};
+          {"samples_per_side", h.samples_per_side},
+          {"vertices", h.vertices}};
 }
 
 }  // namespace carbonmesh

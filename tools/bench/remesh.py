@@ -105,7 +105,8 @@ def main():
              "target 1.5, 10 iterations, borders protected. Seconds: the method's own time (carbonmesh's remesh() / "
              f"CGAL's calls, without file IO), the fastest of {args.repeat} runs, the two methods taking turns; "
              "peak RSS: the whole process. "
-             "Hausdorff: symmetric, to the input, 200k samples a side. CGAL's output is measured "
+             "Hausdorff: symmetric, to the input, 200k area samples a side, the maximum also over every vertex "
+             "of both surfaces (as CGAL's sample_triangle_mesh samples them). CGAL's output is measured "
              "with `stats --repair` (it can contain degenerate triangles). Written by "
              "tools/bench/remesh.py.", "",
              "| model | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "

@@ -26,7 +26,10 @@ void add_stats_command(CLI::App& app, Action& action) {
   cmd->add_option("--emin", opt->emin, "lower bound of the edge interval, mesh units (edges shorter are 'short'; default: none, no interval counts)");
   cmd->add_option("--emax", opt->emax, "upper bound of the edge interval, mesh units (edges longer are 'long'; default: none)");
   cmd->add_option("--ref", opt->ref, "reference mesh for the symmetric Hausdorff distance, in mesh units (default: none, no distance)");
-  cmd->add_option("--samples", opt->samples, "Hausdorff samples per surface")->default_val(200000)->check(CLI::PositiveNumber);
+  cmd->add_option("--samples", opt->samples,
+                  "Hausdorff samples per surface (area-uniform; the max also measures every vertex)")
+      ->default_val(200000)
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--json", opt->json, "one JSON object instead of text");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
   cmd->callback([&action, opt] {
@@ -59,8 +62,9 @@ void add_stats_command(CLI::App& app, Action& action) {
       } else {
         std::cout << opt->mesh << "\n" << to_text(stats);
         if (hausdorff)
-          std::cout << fmt::format("hausdorff to {}: max {:.6g}  rms {:.6g}  ({} samples a side)\n", opt->ref,
-                                   hausdorff->max, hausdorff->rms, hausdorff->samples_per_side);
+          std::cout << fmt::format("hausdorff to {}: max {:.6g}  rms {:.6g}  ({} samples a side{})\n", opt->ref,
+                                   hausdorff->max, hausdorff->rms, hausdorff->samples_per_side,
+                                   hausdorff->vertices ? ", and every vertex for the max" : "");
       }
       return 0;
     };
