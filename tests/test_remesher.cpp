@@ -433,6 +433,41 @@ TEST(SnapToFeatures, BringsACubeCloserAndKeepsEveryEdgeInside) {
   EXPECT_LT(after.rms, 0.85 * before.rms);
 }
 
+// The border step of the feature snap on a flat square sheet (an n x n grid of squares, two triangles each): the
+// remeshed border cuts the square's corners (0.85 from the result before the step); border vertices are pulled onto
+// them, the border vertices beside them sliding along the border. The farthest corner comes nearer, the RMS distance
+// to the input falls, every edge stays inside and the surface keeps its one border.
+TEST(SnapToFeatures, PullsTheBorderOntoTheCornersOfTheInputsBorder) {
+  TriMesh input;
+  const int n = 14;
+  const double side = 30.0, h = side / n;
+  std::vector<TriMesh::VertexHandle> grid;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) grid.push_back(input.add_vertex(Vec3(i * h, j * h, 0)));
+  auto at = [&](int i, int j) { return grid[static_cast<std::size_t>(j * (n + 1) + i)]; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      input.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      input.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  TriMesh plain = input, snapped = input;
+  RemeshSettings settings;
+  settings.snap_features = false;
+  ASSERT_TRUE(remesh(plain, settings).converged);
+  settings.snap_features = true;
+  const RemeshResult result = remesh(snapped, settings);
+  ASSERT_TRUE(result.converged);
+  EXPECT_GT(result.snap_border_max_before, 0.5);
+  EXPECT_GT(result.snapped_border_vertices, 0u);
+  EXPECT_LT(result.snap_border_max_after, result.snap_border_max_before);
+  const EdgeStats edges = edge_stats(snapped, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  EXPECT_TRUE(topology(snapped).same_type(topology(input)));
+  HausdorffSettings hs;
+  hs.samples = 50000;
+  EXPECT_LT(hausdorff_distance(snapped, input, hs).rms, hausdorff_distance(plain, input, hs).rms);
+}
+
 // A disc 2.9 thick (radius 28.9, flattened 1:20), narrower than emin = 1.97 within about 7 of its rim, loses its rim
 // every iteration; as build's disc at 2000 atoms it shrank to a tetrahedron whose 6 short edges were the fewest of the
 // run (150 iterations), and the best mesh kept it. The loop now stops once the area is below half and still

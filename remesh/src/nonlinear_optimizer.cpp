@@ -356,6 +356,11 @@ std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, do
   return variables.size();
 }
 
+bool slides_on_border(const TriMesh& mesh, TriMesh::VertexHandle v) {
+  geometry::BorderCurve c;
+  return border_curve(mesh, v, c);
+}
+
 void optimize_vertices(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& variables, double emin, double emax) {
   thread_local std::unique_ptr<Marks> marks;
   if (!marks || marks->vertex.size() != mesh.n_vertices() || marks->edge.size() != mesh.n_edges())

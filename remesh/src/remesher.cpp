@@ -394,10 +394,18 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.snapped_vertices = snap.snapped;
       result.snap_max_before = snap.max_before;
       result.snap_max_after = snap.max_after;
+      result.snapped_border_vertices = snap.border_snapped;
+      result.snap_border_max_before = snap.border_max_before;
+      result.snap_border_max_after = snap.border_max_after;
       spdlog::debug("snap to features: {} of {} input vertices farther than {:.4f} snapped in {} rounds ({} moves "
                     "tried), farthest {:.4f} -> {:.4f}, {:.3f}s",
                     snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.tries, snap.max_before,
                     snap.max_after, seconds() - t0);
+      if (snap.border_candidates > 0)
+        spdlog::debug("snap to features, borders: {} of {} border vertices of the input farther than {:.4f} snapped in "
+                      "{} rounds, farthest {:.4f} -> {:.4f}",
+                      snap.border_snapped, snap.border_candidates, s.snap_tolerance * s.emin, snap.border_rounds,
+                      snap.border_max_before, snap.border_max_after);
     }
     if (s.flip_toward_input) {
       const DataDependentFlips flips =
@@ -516,6 +524,9 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"snapped_vertices", r.snapped_vertices},
           {"snap_max_before", r.snap_max_before},
           {"snap_max_after", r.snap_max_after},
+          {"snapped_border_vertices", r.snapped_border_vertices},
+          {"snap_border_max_before", r.snap_border_max_before},
+          {"snap_border_max_after", r.snap_border_max_after},
           {"data_dependent_flips", r.data_dependent_flips},
           {"farthest_input", r.farthest_input},
           {"farthest_input_point", {r.farthest_input_point[0], r.farthest_input_point[1], r.farthest_input_point[2]}},

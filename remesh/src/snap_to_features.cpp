@@ -52,13 +52,13 @@ struct Distance {
   int face = -1;  // the remeshed face nearest the input vertex (-1: not measured, a border or isolated vertex)
 };
 
-bool measured(const TriMesh& input, TriMesh::VertexHandle v) {
-  return !input.status(v).deleted() && !input.is_boundary(v) && !input.is_isolated(v);
+bool measured(const TriMesh& input, TriMesh::VertexHandle v, bool borders) {
+  return !input.status(v).deleted() && (borders || !input.is_boundary(v)) && !input.is_isolated(v);
 }
 
-// Distances of the input's interior vertices to the remeshed surface (one AABB tree; parallel, one slot per
-// vertex).
-std::vector<Distance> input_distances(const TriMesh& mesh, const TriMesh& input) {
+// Distances of the input's interior vertices (and with `borders` its border vertices) to the remeshed surface (one
+// AABB tree; parallel, one slot per vertex).
+std::vector<Distance> input_distances(const TriMesh& mesh, const TriMesh& input, bool borders = false) {
   const Triangles triangles = triangles_of(mesh);
   std::vector<Distance> out(input.n_vertices());
   if (triangles.empty()) return out;
@@ -68,7 +68,7 @@ std::vector<Distance> input_distances(const TriMesh& mesh, const TriMesh& input)
   const int n = static_cast<int>(input.n_vertices());
 #pragma omp parallel for schedule(dynamic, 512)
   for (int i = 0; i < n; ++i) {
-    if (!measured(input, TriMesh::VertexHandle(i))) continue;
+    if (!measured(input, TriMesh::VertexHandle(i), borders)) continue;
     const Point q = to_point(input.point(TriMesh::VertexHandle(i)));
     const auto [closest, primitive] = tree.closest_point_and_primitive(q);
     Distance& d = out[static_cast<std::size_t>(i)];
@@ -126,6 +126,7 @@ struct SnapState {
   // Input vertices by their nearest face (as measured at the start of the round): first_near[f], then next_near[i].
   std::vector<int> first_near, next_near;
   double round_max = 0;  // the farthest input vertex at the start of the round
+  bool borders = false;   // the step for the input's border vertices: border vertices slide in the relaxation too
 };
 
 // One thread's scratch space and counts; visit() is the move of one candidate input vertex.
@@ -181,11 +182,15 @@ struct Worker {
     saved.assign(1, {v, mesh.point(v)});
     mesh.set_point(v, q);
     s.fixed[static_cast<std::size_t>(v.idx())] = 1;
-    // The free interior vertices within kn + 1 rings of v (breadth first) are relaxed around it.
+    // The free interior vertices within kn + 1 rings of v (breadth first) are relaxed around it, and in the step for
+    // the border the free border vertices too, along their border curves (held, the border edges at a moved border
+    // vertex leave the interval).
     local.collect(mesh, v, s.kn + 1, inner);
     variables.clear();
     for (auto w : inner)
-      if (w != v && !mesh.is_boundary(w) && !s.fixed[static_cast<std::size_t>(w.idx())]) variables.push_back(w);
+      if (w != v && !s.fixed[static_cast<std::size_t>(w.idx())] &&
+          (!mesh.is_boundary(w) || (s.borders && slides_on_border(mesh, w))))
+        variables.push_back(w);
     for (int pass = 0; pass < kPasses; ++pass) {
       for (auto w : variables) saved.emplace_back(w, mesh.point(w));
       optimize_vertices(mesh, variables, s.emin, s.emax);
@@ -216,14 +221,16 @@ struct Worker {
     for (auto w : mesh.fv_range(face)) stale = stale || s.touched[static_cast<std::size_t>(w.idx())];
     if (stale) return;
     s.tried[static_cast<std::size_t>(c)] = 1;
-    // The free vertices nearest the point among the nearest face's corners and their neighbours; the second
-    // only if it is within emin (on armadillo 0 of 13 second choices farther away were kept).
+    // The free vertices nearest the point among the nearest face's corners and their neighbours, border vertices
+    // for a corner of the input's border and interior ones else; the second only if it is within emin (on armadillo
+    // 0 of 13 second choices farther away were kept).
+    const bool border = s.input.is_boundary(TriMesh::VertexHandle(c));
     choices.clear();
     for (auto corner : mesh.fv_range(face))
       for (auto w : mesh.vv_range(corner))
         for (auto u : {corner, w}) {
           const double d = (mesh.point(u) - q).norm();
-          if (!mesh.is_boundary(u) && !s.fixed[static_cast<std::size_t>(u.idx())] && d <= s.emax)
+          if (mesh.is_boundary(u) == border && !s.fixed[static_cast<std::size_t>(u.idx())] && d <= s.emax)
             choices.emplace_back(d, u.idx());
         }
     std::sort(choices.begin(), choices.end());
@@ -368,59 +375,87 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   for (int t = 0; t < max_threads(); ++t) workers.emplace_back(emin, emax);
   Schedule schedule(mesh, kn);
 
-  std::vector<int> candidates;
-  for (const auto& d : distances) result.max_before = std::max(result.max_before, d.d);
-  for (int round = 0; round < kRounds; ++round) {
-    const auto round_start = std::chrono::steady_clock::now();
-    candidates.clear();
-    for (std::size_t i = 0; i < distances.size(); ++i)
-      if (distances[i].d > tolerance && distances[i].face >= 0 && !state.tried[i])
-        candidates.push_back(static_cast<int>(i));
-    if (round == 0) result.candidates = candidates.size();
-    std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
-      const double da = distances[static_cast<std::size_t>(a)].d, db = distances[static_cast<std::size_t>(b)].d;
-      return da != db ? da > db : a < b;
-    });
-    std::fill(state.touched.begin(), state.touched.end(), 0);
-    state.round_max = 0;
-    for (const auto& d : distances) state.round_max = std::max(state.round_max, d.d);
-    state.first_near.assign(mesh.n_faces(), -1);
-    for (std::size_t i = 0; i < distances.size(); ++i)
-      if (distances[i].face >= 0) {
-        state.next_near[i] = state.first_near[static_cast<std::size_t>(distances[i].face)];
-        state.first_near[static_cast<std::size_t>(distances[i].face)] = static_cast<int>(i);
+  // Rounds of moves of the candidates (interior input vertices, or with `borders` those of the input's border) until
+  // one keeps none; returns the moves kept.
+  auto rounds = [&](bool borders, std::size_t& first_candidates, int& rounds_run) {
+    std::size_t kept = 0;
+    std::vector<int> candidates;
+    for (int round = 0; round < kRounds; ++round) {
+      const auto round_start = std::chrono::steady_clock::now();
+      candidates.clear();
+      for (std::size_t i = 0; i < distances.size(); ++i)
+        if (distances[i].d > tolerance && distances[i].face >= 0 && !state.tried[i] &&
+            (!borders || input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i)))))
+          candidates.push_back(static_cast<int>(i));
+      if (round == 0) first_candidates = candidates.size();
+      std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
+        const double da = distances[static_cast<std::size_t>(a)].d, db = distances[static_cast<std::size_t>(b)].d;
+        return da != db ? da > db : a < b;
+      });
+      std::fill(state.touched.begin(), state.touched.end(), 0);
+      state.round_max = 0;
+      for (const auto& d : distances) state.round_max = std::max(state.round_max, d.d);
+      state.first_near.assign(mesh.n_faces(), -1);
+      for (std::size_t i = 0; i < distances.size(); ++i)
+        if (distances[i].face >= 0) {
+          state.next_near[i] = state.first_near[static_cast<std::size_t>(distances[i].face)];
+          state.first_near[static_cast<std::size_t>(distances[i].face)] = static_cast<int>(i);
+        }
+      // Farthest first; candidates far enough apart that neither move can see the other's run in parallel, so the
+      // result is that of one thread taking them in order.
+      for (auto& w : workers) w.snapped = 0;
+      schedule.run(candidates, distances,
+                   [&](int c) { workers[static_cast<std::size_t>(thread_index())].visit(state, c); });
+      std::size_t snapped = 0;
+      for (auto& w : workers) snapped += w.snapped;
+      // Input vertices whose nearest face moved: measured again among the faces around it.
+      for (std::size_t i = 0; i < distances.size(); ++i) {
+        Distance& d = distances[i];
+        if (d.face < 0) continue;
+        bool stale = false;
+        for (auto w : mesh.fv_range(TriMesh::FaceHandle(d.face)))
+          stale = stale || state.touched[static_cast<std::size_t>(w.idx())];
+        if (stale) {
+          d = local_distance(mesh, input.point(TriMesh::VertexHandle(static_cast<int>(i))),
+                             TriMesh::FaceHandle(d.face), 3, workers[0].search, workers[0].around);
+          state.tried[i] = 0;  // a new neighbourhood: may be tried again
+        }
       }
-    // Farthest first; candidates far enough apart that neither move can see the other's run in parallel, so the
-    // result is that of one thread taking them in order.
-    for (auto& w : workers) w.snapped = 0;
-    schedule.run(candidates, distances,
-                 [&](int c) { workers[static_cast<std::size_t>(thread_index())].visit(state, c); });
-    std::size_t snapped = 0;
-    for (auto& w : workers) snapped += w.snapped;
-    // Input vertices whose nearest face moved: measured again among the faces around it.
-    for (std::size_t i = 0; i < distances.size(); ++i) {
-      Distance& d = distances[i];
-      if (d.face < 0) continue;
-      bool stale = false;
-      for (auto w : mesh.fv_range(TriMesh::FaceHandle(d.face)))
-        stale = stale || state.touched[static_cast<std::size_t>(w.idx())];
-      if (stale) {
-        d = local_distance(mesh, input.point(TriMesh::VertexHandle(static_cast<int>(i))), TriMesh::FaceHandle(d.face),
-                           3, workers[0].search, workers[0].around);
-        state.tried[i] = 0;  // a new neighbourhood: may be tried again
-      }
+      kept += snapped;
+      rounds_run = round + 1;
+      // Progress on a long snap (a noisy scan: thousands of input vertices off the surface, each a move to try).
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
+      spdlog::log(seconds >= kProgressSeconds ? spdlog::level::info : spdlog::level::debug,
+                  "snap to features, {}round {}: {} of {} input vertices snapped, {:.1f}s", borders ? "border " : "",
+                  round + 1, snapped, candidates.size(), seconds);
+      if (snapped == 0) break;
     }
-    result.snapped += snapped;
-    result.rounds = round + 1;
-    // Progress on a long snap (a noisy scan: thousands of input vertices off the surface, each a move to try).
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
-    spdlog::log(seconds >= kProgressSeconds ? spdlog::level::info : spdlog::level::debug,
-                "snap to features, round {}: {} of {} input vertices snapped, {:.1f}s", round + 1, snapped,
-                candidates.size(), seconds);
-    if (snapped == 0) break;
-  }
+    return kept;
+  };
+  for (const auto& d : distances) result.max_before = std::max(result.max_before, d.d);
+  result.snapped = rounds(false, result.candidates, result.rounds);
+  // Then the corners of the input's borders (a scan's holes: the remeshed border, its vertices moved along the
+  // curves through their border edges, cuts them), each pulling the nearest free border vertex onto itself; the
+  // interior input vertices are measured with them, so no move takes the surface farther than the farthest of all.
+  distances = input_distances(mesh, input, /*borders=*/true);
+  std::fill(state.tried.begin(), state.tried.end(), 0);
+  state.borders = true;
+  auto border_max = [&] {
+    double m = 0;
+    for (std::size_t i = 0; i < distances.size(); ++i)
+      if (distances[i].face >= 0 && input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
+        m = std::max(m, distances[i].d);
+    return m;
+  };
+  result.border_max_before = border_max();
+  if (result.border_max_before > tolerance)
+    result.border_snapped = rounds(true, result.border_candidates, result.border_rounds);
+  result.border_max_after = border_max();
   for (const auto& w : workers) result.tries += w.tries;
-  for (const auto& d : distances) result.max_after = std::max(result.max_after, d.d);
+  result.max_after = 0;  // interior input vertices (the border step may move them too)
+  for (std::size_t i = 0; i < distances.size(); ++i)
+    if (!input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
+      result.max_after = std::max(result.max_after, distances[i].d);
   result.fixed = std::move(state.fixed);
   return result;
 }

@@ -140,6 +140,11 @@ void add_remesh_command(CLI::App& app, Action& action) {
           std::cout << fmt::format("feature snap: {} vertices moved onto the input, farthest input vertex {:.4f} -> "
                                    "{:.4f}\n",
                                    result.snapped_vertices, result.snap_max_before, result.snap_max_after);
+        if (result.snapped && result.snap_border_max_before > 0)
+          std::cout << fmt::format("feature snap, borders: {} border vertices moved onto the input's border, farthest "
+                                   "border vertex {:.4f} -> {:.4f}\n",
+                                   result.snapped_border_vertices, result.snap_border_max_before,
+                                   result.snap_border_max_after);
         if (settings.flip_toward_input && result.converged)
           std::cout << fmt::format("data-dependent flips: {} edges flipped toward the input\n",
                                    result.data_dependent_flips);

@@ -118,8 +118,13 @@ NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double e
 std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, double emin, double emax,
                                  std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved);
 
-// The same over the given vertices (interior ones; every other vertex stays where it is).
+// The same over the given vertices: interior ones, and border ones for which slides_on_border(), each moving along
+// the curve through its border edges; every other vertex stays where it is.
 void optimize_vertices(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& variables, double emin, double emax);
+
+// Whether border vertex `v` has a border curve to move along (it lies on exactly one border, and its two border
+// neighbours differ).
+bool slides_on_border(const TriMesh& mesh, TriMesh::VertexHandle v);
 
 // ---- projection.cpp (section 4.5, Algorithm 4) --------------------------------------------------------
 
@@ -167,13 +172,18 @@ struct SnapResult {
   double max_before = 0, max_after = 0;  // largest distance of an interior input vertex to the remeshed surface,
                                          // before and after this step
   std::vector<char> fixed;               // per vertex of the mesh: 1 where it was snapped onto the input
+  // The same for the input's border vertices, after the interior ones (border vertices moved onto them).
+  std::size_t border_candidates = 0, border_snapped = 0;
+  int border_rounds = 0;
+  double border_max_before = 0, border_max_after = 0;
 };
 // Each interior input vertex farther than `tolerance` from `mesh` (farthest first) pulls the nearest free
 // interior vertex of `mesh` onto itself; the interior vertices of its kn+1 rings are relaxed (Error_b with
 // the interval hinge) and projected onto `target`. Kept only if that adds no edge outside [emin, emax], no
 // face under 3 degrees and no folded face, and leaves the input vertices nearest the moved faces nearer than the
 // farthest input vertex was (the farthest distance never grows); with every edge inside before they all stay
-// inside.
+// inside. Then the same for the input's border vertices, each pulling the nearest free border vertex of `mesh`
+// onto itself (the interior input vertices measured with them for the farthest distance).
 SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                             double emax, double tolerance);
 

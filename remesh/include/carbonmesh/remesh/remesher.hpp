@@ -109,6 +109,9 @@ struct RemeshResult {
   std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
   // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit).
   double snap_max_before = 0, snap_max_after = 0;
+  // The same for the input's border vertices (border vertices moved onto the corners of the input's borders).
+  std::size_t snapped_border_vertices = 0;
+  double snap_border_max_before = 0, snap_border_max_after = 0;
   std::size_t data_dependent_flips = 0;  // flips toward the input (settings.flip_toward_input)
   // The interior input vertex farthest from the final surface (settings.measure_cut_off): more than emax means a
   // part of the input was cut off, and remesh() warns.
