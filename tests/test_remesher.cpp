@@ -537,37 +537,65 @@ TEST(SnapToFeatures, NeverMovesTheSurfaceFartherFromTheInput) {
 }
 
 // The snap's moves run on every thread where they are far enough apart not to see each other: the same mesh, the
-// same vertices held and the same counts as on one thread, on a sphere with 4% noise (dozens of moves tried).
+// same vertices held and the same counts as on one thread, on a sphere with 4% noise (dozens of moves tried) and on
+// the same with a border.
 TEST(SnapToFeatures, GivesTheSameMeshOnTwoThreadsAsOnOne) {
 #ifndef _OPENMP
   GTEST_SKIP() << "built without OpenMP";
 #else
-  const TriMesh input = test::radial_noise(scaled(make_icosphere({6.0, 3}), 0.63), 0.04, 1);
-  TriMesh converged = input;
-  RemeshSettings settings;
-  settings.snap_features = settings.fit_surface = false;
-  ASSERT_TRUE(remesh(converged, settings).converged);
-  const ProjectionTarget target(input, 4 * settings.emax);
-  auto snap = [&](int threads, TriMesh& mesh) {
-    omp_set_num_threads(threads);
-    mesh = converged;
-    return snap_to_features(mesh, input, target, settings.kn, settings.emin, settings.emax,
-                            settings.snap_tolerance * settings.emin);
-  };
-  TriMesh one, two;
-  const SnapResult a = snap(1, one), b = snap(2, two);
-  omp_set_num_threads(omp_get_num_procs());
-  EXPECT_GT(a.tries, 20u);
-  EXPECT_GT(a.snapped, 5u);
-  EXPECT_EQ(a.tries, b.tries);
-  EXPECT_EQ(a.snapped, b.snapped);
-  EXPECT_EQ(a.rounds, b.rounds);
-  EXPECT_EQ(a.max_after, b.max_after);
-  EXPECT_EQ(a.fixed, b.fixed);
-  ASSERT_EQ(one.n_vertices(), two.n_vertices());
-  std::size_t differ = 0;
-  for (auto v : one.vertices()) differ += one.point(v) != two.point(v);
-  EXPECT_EQ(differ, 0u);
+  const TriMesh sphere = test::radial_noise(scaled(make_icosphere({6.0, 3}), 0.63), 0.04, 1);
+  // The same with its top cut off along the input's edges (a jagged border: the snap's border step has corners to
+  // take).
+  TriMesh cap;
+  std::vector<TriMesh::VertexHandle> map(sphere.n_vertices());
+  double top = 0;
+  for (auto v : sphere.vertices()) top = std::max(top, sphere.point(v)[2]);
+  for (auto f : sphere.faces()) {
+    Vec3 c(0, 0, 0);
+    for (auto v : sphere.fv_range(f)) c += sphere.point(v) / 3.0;
+    if (c[2] > 0.5 * top) continue;
+    std::vector<TriMesh::VertexHandle> corners;
+    for (auto v : sphere.fv_range(f)) {
+      auto& m = map[static_cast<std::size_t>(v.idx())];
+      if (!m.is_valid()) m = cap.add_vertex(sphere.point(v));
+      corners.push_back(m);
+    }
+    cap.add_face(corners);
+  }
+  for (const TriMesh* input : {&sphere, static_cast<const TriMesh*>(&cap)}) {
+    TriMesh converged = *input;
+    RemeshSettings settings;
+    settings.snap_features = settings.fit_surface = false;
+    ASSERT_TRUE(remesh(converged, settings).converged);
+    const ProjectionTarget target(*input, 4 * settings.emax);
+    auto snap = [&](int threads, TriMesh& mesh) {
+      omp_set_num_threads(threads);
+      mesh = converged;
+      return snap_to_features(mesh, *input, target, settings.kn, settings.emin, settings.emax,
+                              settings.snap_tolerance * settings.emin);
+    };
+    TriMesh one, two;
+    const SnapResult a = snap(1, one), b = snap(2, two);
+    omp_set_num_threads(omp_get_num_procs());
+    EXPECT_GT(a.tries, 20u);
+    if (input == &cap) {
+      EXPECT_GT(a.border_snapped, 0u);
+    } else {
+      EXPECT_GT(a.snapped, 5u);
+    }
+    EXPECT_EQ(a.tries, b.tries);
+    EXPECT_EQ(a.snapped, b.snapped);
+    EXPECT_EQ(a.border_snapped, b.border_snapped);
+    EXPECT_EQ(a.rounds, b.rounds);
+    EXPECT_EQ(a.border_rounds, b.border_rounds);
+    EXPECT_EQ(a.max_after, b.max_after);
+    EXPECT_EQ(a.border_max_after, b.border_max_after);
+    EXPECT_EQ(a.fixed, b.fixed);
+    ASSERT_EQ(one.n_vertices(), two.n_vertices());
+    std::size_t differ = 0;
+    for (auto v : one.vertices()) differ += one.point(v) != two.point(v);
+    EXPECT_EQ(differ, 0u);
+  }
 #endif
 }
 
