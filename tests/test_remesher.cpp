@@ -305,16 +305,29 @@ TEST(Remesher, CoarseInputIsBisectedAndConverges) {
   EXPECT_LT(hausdorff_distance(mesh, input, h).max, 0.5);
 }
 
+// `input` remeshed twice with the default settings, `step` off and then on, for the tests of what a step adds.
+struct StepRuns {
+  TriMesh without, with;
+  RemeshResult off, on;
+};
+StepRuns remesh_without_and_with(const TriMesh& input, bool RemeshSettings::*step) {
+  StepRuns runs{input, input, {}, {}};
+  RemeshSettings settings;
+  settings.*step = false;
+  runs.off = remesh(runs.without, settings);
+  settings.*step = true;
+  runs.on = remesh(runs.with, settings);
+  return runs;
+}
+
 // The surface fit: on a finely tessellated sphere (radius 10), remeshing into [1.2, 1.8] with the fit gives a
 // clearly smaller distance to the input than with every vertex on the input, and keeps every edge inside.
 TEST(SurfaceFit, HalvesTheChordErrorAndKeepsEveryEdgeInside) {
   const TriMesh input = make_icosphere({10.0, 4});
-  TriMesh on_input = input, fitted = input;
-  RemeshSettings settings;
-  settings.fit_surface = false;
-  ASSERT_TRUE(remesh(on_input, settings).converged);
-  settings.fit_surface = true;
-  const RemeshResult result = remesh(fitted, settings);
+  const StepRuns runs = remesh_without_and_with(input, &RemeshSettings::fit_surface);
+  const TriMesh &on_input = runs.without, &fitted = runs.with;
+  const RemeshResult& result = runs.on;
+  ASSERT_TRUE(runs.off.converged);
   ASSERT_TRUE(result.converged);
   EXPECT_TRUE(result.fitted);
   EXPECT_LT(result.fit_rms_after, 0.7 * result.fit_rms_before);
@@ -414,12 +427,10 @@ TEST(Remesher, ALoopWithoutABetterMeshForFortyIterationsStopsWithTheSameResult) 
 // time does not make (docs/algorithm.md).
 TEST(SnapToFeatures, BringsACubeCloserAndKeepsEveryEdgeInside) {
   const TriMesh input = grid_cube(10.0, 5);
-  TriMesh plain = input, snapped = input;
-  RemeshSettings settings;
-  settings.snap_features = false;
-  ASSERT_TRUE(remesh(plain, settings).converged);
-  settings.snap_features = true;
-  const RemeshResult result = remesh(snapped, settings);
+  const StepRuns runs = remesh_without_and_with(input, &RemeshSettings::snap_features);
+  const TriMesh &plain = runs.without, &snapped = runs.with;
+  const RemeshResult& result = runs.on;
+  ASSERT_TRUE(runs.off.converged);
   ASSERT_TRUE(result.converged);
   EXPECT_TRUE(result.snapped);
   EXPECT_GT(result.snapped_vertices, 8u);
@@ -450,12 +461,10 @@ TEST(SnapToFeatures, PullsTheBorderOntoTheCornersOfTheInputsBorder) {
       input.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
       input.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
     }
-  TriMesh plain = input, snapped = input;
-  RemeshSettings settings;
-  settings.snap_features = false;
-  ASSERT_TRUE(remesh(plain, settings).converged);
-  settings.snap_features = true;
-  const RemeshResult result = remesh(snapped, settings);
+  const StepRuns runs = remesh_without_and_with(input, &RemeshSettings::snap_features);
+  const TriMesh &plain = runs.without, &snapped = runs.with;
+  const RemeshResult& result = runs.on;
+  ASSERT_TRUE(runs.off.converged);
   ASSERT_TRUE(result.converged);
   EXPECT_GT(result.snap_border_max_before, 0.5);
   EXPECT_GT(result.snapped_border_vertices, 0u);

@@ -437,8 +437,9 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   // Then the corners of the input's borders (a scan's holes: the remeshed border, its vertices moved along the
   // curves through their border edges, cuts them), each pulling the nearest free border vertex onto itself; the
   // interior input vertices are measured with them, so no move takes the surface farther than the farthest of all.
-  bool borders = false;
-  for (auto v : input.vertices()) borders = borders || (input.is_boundary(v) && measured(input, v, true));
+  const auto vertices = input.vertices();
+  const bool borders = std::any_of(vertices.begin(), vertices.end(),
+                                   [&](auto v) { return input.is_boundary(v) && measured(input, v, true); });
   if (borders) distances = input_distances(mesh, input, /*borders=*/true);  // (a closed input: nothing to measure)
   std::fill(state.tried.begin(), state.tried.end(), 0);
   state.borders = true;
