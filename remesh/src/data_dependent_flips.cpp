@@ -30,17 +30,6 @@ constexpr int kValenceSlack = 2;    // E_val may rise by this much (one vertex p
                                     // Hausdorff max at 2M samples: armadillo 0.589 -> 0.477 (6 flips), bunny 0.798 ->
                                     // 0.647 (2); with 0: armadillo 0.528 (2), bunny no flip; with 4: 0.474 (10), 0.647
 
-// The largest distance to the input of seven points of the triangle: its centroid, its edge midpoints and the
-// points a third of the way from the centroid to each corner.
-double face_distance(const Tree& input, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 g = (a + b + c) / 3.0;
-  double worst = 0;
-  for (const Vec3& p : {g, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (2.0 * g + a) / 3.0, (2.0 * g + b) / 3.0,
-                        (2.0 * g + c) / 3.0})
-    worst = std::max(worst, input.squared_distance(to_point(p)));
-  return std::sqrt(worst);
-}
-
 // Whether the valences after the flip of edge a-b (opposite c, d) keep every vertex within one of its ideal
 // valence (or no farther than it was) and E_val within kValenceSlack of before.
 bool valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c,

@@ -5,13 +5,14 @@
 // Hausdorff distance is set there, up to most of an edge, and offsets along the normals (fit_to_surface)
 // cannot reach it. Here each input vertex farther from the remeshed surface than `tolerance` pulls one of the
 // nearest free remeshed vertices onto itself; that vertex is then held fixed while the interior vertices of
-// its kn+1 rings are relaxed (Error_b with the interval hinge, Eq 4.7) and projected back onto the input. The
+// its kn+2 rings are relaxed (Error_b with the interval hinge, Eq 4.7) and projected back onto the input. The
 // move is kept only if the region gains no edge outside [emin, emax], no face under 3 degrees and no folded
-// face, and if every input vertex nearest one of the region's faces ends nearer than the farthest input vertex
-// was at the start of the round (so that distance never grows); otherwise every position is restored. Farthest
-// input vertices first, in rounds: the distances of the input vertices next to a kept move are measured again
-// (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move failed are
-// tried again in a new neighbourhood. Moves far enough apart that neither can see the other run on all threads
+// face, and if every input vertex and input edge midpoint nearest one of the region's faces, and every face the
+// move changed, ends nearer than the farthest of those input points was at the start of the round (so that distance
+// never grows, and the moved faces do not go farther from the input than that either); otherwise every position is
+// restored. Farthest input vertices first, in rounds: the distances of the input points next to a kept move are
+// measured again (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move
+// failed are tried again in a new neighbourhood. Moves far enough apart that neither can see the other run on all threads
 // (Schedule below), with the result of one thread taking them in order.
 #include <algorithm>
 #include <chrono>
@@ -40,6 +41,10 @@ using namespace triangle_tree;
 constexpr int kRounds = 6;           // at most; a round that keeps no move ends the step
 constexpr std::size_t kChoices = 2;  // remeshed vertices tried per input vertex, nearest first (on armadillo a
                                      // third choice was kept in 5 of 105 tries)
+constexpr int kRelaxRings = 2;      // the free vertices within kn + 2 rings of a moved vertex are relaxed around it
+                                     // (kn + 1: armadillo's farthest input vertex, a cone tip 1.06 from the nearest
+                                     // remeshed vertices, stayed 0.542 from the result; kn + 2: 0.482; kn + 3: 0.490,
+                                     // the snap twice as long as with kn + 1)
 constexpr int kPasses = 3;           // relax-and-project passes before a move is given up (kept at the first
                                      // clean one)
 constexpr double kProgressSeconds = 1.0;  // a round that takes longer is logged at info level (else debug)
@@ -56,42 +61,72 @@ bool measured(const TriMesh& input, TriMesh::VertexHandle v, bool borders) {
   return !input.status(v).deleted() && (borders || !input.is_boundary(v)) && !input.is_isolated(v);
 }
 
-// Distances of the input's interior vertices (and with `borders` its border vertices) to the remeshed surface (one
-// AABB tree; parallel, one slot per vertex).
-std::vector<Distance> input_distances(const TriMesh& mesh, const TriMesh& input, bool borders = false) {
+// The input points the snap measures: the input's vertices (indices 0 to vertices - 1: the candidates) and then the
+// midpoints of its edges, watched so that a move does not take the surface off an input edge between two vertices
+// (a crease that the moved faces cut: bunny's base rim went 0.65 -> 0.72 from the result with kn + 2 rings relaxed
+// and only the vertices watched).
+struct InputPoints {
+  std::vector<Vec3> points;
+  std::vector<char> interior, all;  // measured: the points off the input's border / every point (both steps)
+  std::size_t vertices = 0;
+};
+
+InputPoints input_points(const TriMesh& input, bool edges) {
+  InputPoints out;
+  out.vertices = input.n_vertices();
+  for (std::size_t i = 0; i < out.vertices; ++i) {  // (every index: the candidates are input vertex indices)
+    const TriMesh::VertexHandle v(static_cast<int>(i));
+    out.points.push_back(input.point(v));
+    out.interior.push_back(measured(input, v, false));
+    out.all.push_back(measured(input, v, true));
+  }
+  if (!edges) return out;
+  for (auto e : input.edges()) {
+    const auto h = input.halfedge_handle(e, 0);
+    const auto a = input.from_vertex_handle(h), b = input.to_vertex_handle(h);
+    out.points.push_back(0.5 * (input.point(a) + input.point(b)));
+    out.interior.push_back(measured(input, a, false) && measured(input, b, false));
+    out.all.push_back(measured(input, a, true) && measured(input, b, true));
+  }
+  return out;
+}
+
+// The distances of the input points marked in `which` to the remeshed surface, into `out` (one AABB tree; parallel,
+// one slot per point); the others are left as they are.
+void measure_input(const TriMesh& mesh, const InputPoints& input, const std::vector<char>& which,
+                   std::vector<Distance>& out) {
+  out.resize(input.points.size());
   const Triangles triangles = triangles_of(mesh);
-  std::vector<Distance> out(input.n_vertices());
-  if (triangles.empty()) return out;
+  if (triangles.empty()) return;
   Tree tree(triangles.begin(), triangles.end());
   tree.build();
   tree.accelerate_distance_queries();
-  const int n = static_cast<int>(input.n_vertices());
+  const int n = static_cast<int>(input.points.size());
 #pragma omp parallel for schedule(dynamic, 512)
   for (int i = 0; i < n; ++i) {
-    if (!measured(input, TriMesh::VertexHandle(i), borders)) continue;
-    const Point q = to_point(input.point(TriMesh::VertexHandle(i)));
+    if (!which[static_cast<std::size_t>(i)]) continue;
+    const Point q = to_point(input.points[static_cast<std::size_t>(i)]);
     const auto [closest, primitive] = tree.closest_point_and_primitive(q);
     Distance& d = out[static_cast<std::size_t>(i)];
     d.d = std::sqrt(CGAL::squared_distance(q, closest));
     d.face = static_cast<int>(primitive - triangles.begin());  // triangles_of lists the faces in order
   }
-  return out;
 }
 
 // The distance of q to the faces around `face` (corners within `rings` of its first corner), after a local
 // change near it.
 Distance local_distance(const TriMesh& mesh, const Vec3& q, TriMesh::FaceHandle face, int rings, LocalRegion& local,
-                        std::vector<TriMesh::VertexHandle>& around) {
+                        std::vector<TriMesh::VertexHandle>& around, std::vector<TriMesh::FaceHandle>& faces) {
   Distance best{std::numeric_limits<double>::infinity(), -1};
   local.collect(mesh, mesh.to_vertex_handle(mesh.halfedge_handle(face)), rings, around);
+  local.faces(mesh, around, faces);
   const Point p = to_point(q);
-  for (auto v : around)
-    for (auto f : mesh.vf_range(v)) {
-      Vec3 a, b, c;
-      geometry::face_points(mesh, f, a, b, c);
-      const double d = std::sqrt(CGAL::squared_distance(p, Triangle(to_point(a), to_point(b), to_point(c))));
-      if (d < best.d || (d == best.d && f.idx() < best.face)) best = {d, f.idx()};
-    }
+  for (auto f : faces) {
+    Vec3 a, b, c;
+    geometry::face_points(mesh, f, a, b, c);
+    const double d = std::sqrt(CGAL::squared_distance(p, Triangle(to_point(a), to_point(b), to_point(c))));
+    if (d < best.d || (d == best.d && f.idx() < best.face)) best = {d, f.idx()};
+  }
   return best;
 }
 
@@ -114,18 +149,21 @@ int thread_index() {
 // What every move of a round reads and writes: the mesh, the input vertices' distances as measured at the start of
 // the round, and the per-vertex marks.
 struct SnapState {
-  SnapState(TriMesh& m, const TriMesh& in, const ProjectionTarget& t, int k, double lo, double hi)
-      : mesh(m), input(in), target(t), kn(k), emin(lo), emax(hi) {}
+  SnapState(TriMesh& m, const TriMesh& in, const InputPoints& p, const ProjectionTarget& t, int k, double lo, double hi)
+      : mesh(m), input(in), points(p), target(t), kn(k), emin(lo), emax(hi) {}
   TriMesh& mesh;
   const TriMesh& input;
+  const InputPoints& points;
   const ProjectionTarget& target;
   int kn;
   double emin, emax;
   std::vector<char> fixed, touched, tried;
   std::vector<Distance> distances;
+  std::vector<double> upper;  // upper bounds of the input points' distances in the round (kept moves raise them)
   // Input vertices by their nearest face (as measured at the start of the round): first_near[f], then next_near[i].
   std::vector<int> first_near, next_near;
   double round_max = 0;  // the farthest input vertex at the start of the round
+  const Tree* input_tree = nullptr;  // the input's faces
   bool borders = false;   // the step for the input's border vertices: border vertices slide in the relaxation too
 };
 
@@ -136,6 +174,11 @@ struct Worker {
   std::vector<std::pair<TriMesh::VertexHandle, Vec3>> saved;
   std::vector<TriMesh::FaceHandle> region_faces;
   std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
+  std::vector<TriMesh::FaceHandle> moved_faces, around_faces;
+  std::vector<double> watched_upper;
+  std::vector<unsigned> moved_mark;  // == move_stamp: moved in this move, from moved_from
+  std::vector<Vec3> moved_from;
+  unsigned move_stamp = 0;
   std::vector<Vec3> neighbors;
   std::vector<int> watched;
   std::vector<std::pair<double, int>> choices;
@@ -150,26 +193,61 @@ struct Worker {
   }
 
   double measure(const SnapState& s, int i) {
-    return local_distance(s.mesh, s.input.point(TriMesh::VertexHandle(i)),
-                          TriMesh::FaceHandle(s.distances[static_cast<std::size_t>(i)].face), 2, search, around)
+    return local_distance(s.mesh, s.points.points[static_cast<std::size_t>(i)],
+                          TriMesh::FaceHandle(s.distances[static_cast<std::size_t>(i)].face), 2, search, around,
+                          around_faces)
         .d;
   }
 
-  // After a move: whether every watched input vertex is nearer than `limit`.
+  static double distance_to_input(const SnapState& s, TriMesh::FaceHandle f) {
+    Vec3 a, b, c;
+    geometry::face_points(s.mesh, f, a, b, c);
+    return face_distance(*s.input_tree, a, b, c);
+  }
+
+  // After a move: whether every face it may have changed is nearer the input than `limit` (seven points each).
+  bool faces_within(const SnapState& s, double limit) const {
+    for (auto f : moved_faces)
+      if (distance_to_input(s, f) >= limit) return false;
+    return true;
+  }
+
+  // How far the corners of face f moved in this move (0 for corners it did not move).
+  double corner_shift(const SnapState& s, int f) const {
+    double shift = 0;
+    for (auto w : s.mesh.fv_range(TriMesh::FaceHandle(f))) {
+      const auto k = static_cast<std::size_t>(w.idx());
+      if (moved_mark[k] == move_stamp) shift = std::max(shift, (s.mesh.point(w) - moved_from[k]).norm());
+    }
+    return shift;
+  }
+
+  // After a move: whether every watched input point is nearer than `limit`. A point's distance grows by no more than
+  // the corners of its nearest face moved (the point of the moved face at the same barycentric coordinates is no
+  // farther), so a point whose bound stays under the limit is not measured (the bounds, in watched_upper, become the
+  // points' upper bounds if the move is kept).
   bool watched_within(const SnapState& s, double limit) {
-    for (const int i : watched)
-      if (measure(s, i) >= limit) return false;
+    watched_upper.clear();
+    for (const int i : watched) {
+      const auto k = static_cast<std::size_t>(i);
+      const double bound = s.upper[k] + corner_shift(s, s.distances[k].face);
+      const double d = bound < limit * (1 - 1e-9) ? bound : measure(s, i);
+      if (d >= limit) return false;
+      watched_upper.push_back(d);
+    }
     return true;
   }
 
   // Moves v onto q, relaxes and projects its neighbourhood; keeps the result if the region has no new flaw and the
-  // input vertices nearest its faces all end nearer than the farthest input vertex at the start of the round
+  // input points nearest its faces all end nearer than the farthest input point at the start of the round
   // (without this check the snap raised the farthest input vertex of spheres with 4% noise in 10 of 16 seeds; a
   // stricter one, nearer than the farthest of the watched vertices, lowered armadillo's Hausdorff maximum 0.589 ->
-  // 0.537 but raised bunny's 0.798 -> 0.850 and its RMS, 2M samples).
+  // 0.537 but raised bunny's 0.798 -> 0.850 and its RMS, 2M samples), and so does every face it moved (with kn + 2
+  // rings relaxed and without this check the moved faces went 0.51 from armadillo's input, 2M samples; a stricter
+  // one, each face no farther than it was or than the tolerance, kept a third fewer moves and raised the maxima).
   bool try_snap(SnapState& s, TriMesh::VertexHandle v, const Vec3& q) {
     TriMesh& mesh = s.mesh;
-    local.collect(mesh, v, s.kn + 3, region);  // every vertex the relaxation moves, with their stars
+    local.collect(mesh, v, s.kn + kRelaxRings + 2, region);  // every vertex the relaxation moves, with their stars
     const std::size_t flaws_before = local.flaws(mesh, region);
     local.faces(mesh, region, region_faces);  // each once: the fold check below runs every pass
     watched.clear();
@@ -179,18 +257,32 @@ struct Worker {
         watched.push_back(i);
     normals.clear();
     for (auto f : region_faces) normals.emplace_back(f, geometry::face_normal(mesh, f));
-    saved.assign(1, {v, mesh.point(v)});
-    mesh.set_point(v, q);
-    s.fixed[static_cast<std::size_t>(v.idx())] = 1;
-    // The free interior vertices within kn + 1 rings of v (breadth first) are relaxed around it, and in the step for
+    // The free interior vertices within kn + 2 rings of v (breadth first) are relaxed around it, and in the step for
     // the border the free border vertices too, along their border curves (held, the border edges at a moved border
     // vertex leave the interval).
-    local.collect(mesh, v, s.kn + 1, inner);
+    local.collect(mesh, v, s.kn + kRelaxRings, inner);
     variables.clear();
     for (auto w : inner)
       if (w != v && !s.fixed[static_cast<std::size_t>(w.idx())] &&
           (!mesh.is_boundary(w) || (s.borders && slides_on_border(mesh, w))))
         variables.push_back(w);
+    // The faces the move may change (each once).
+    moved_faces.clear();
+    for (auto w : variables)
+      for (auto f : mesh.vf_range(w)) moved_faces.push_back(f);
+    for (auto f : mesh.vf_range(v)) moved_faces.push_back(f);
+    std::sort(moved_faces.begin(), moved_faces.end());
+    moved_faces.erase(std::unique(moved_faces.begin(), moved_faces.end()), moved_faces.end());
+    ++move_stamp;
+    moved_mark.resize(mesh.n_vertices(), 0);
+    moved_from.resize(mesh.n_vertices());
+    for (auto w : variables) moved_mark[static_cast<std::size_t>(w.idx())] = move_stamp;
+    moved_mark[static_cast<std::size_t>(v.idx())] = move_stamp;
+    for (auto w : variables) moved_from[static_cast<std::size_t>(w.idx())] = mesh.point(w);
+    moved_from[static_cast<std::size_t>(v.idx())] = mesh.point(v);
+    saved.assign(1, {v, mesh.point(v)});
+    mesh.set_point(v, q);
+    s.fixed[static_cast<std::size_t>(v.idx())] = 1;
     for (int pass = 0; pass < kPasses; ++pass) {
       for (auto w : variables) saved.emplace_back(w, mesh.point(w));
       optimize_vertices(mesh, variables, s.emin, s.emax);
@@ -199,8 +291,11 @@ struct Worker {
       for (const auto& [f, before] : normals)
         folded = folded || OpenMesh::dot(before, geometry::face_normal(mesh, f)) < geometry::kMaxNormalTurnCos;
       const std::size_t flaws = local.flaws(mesh, region);
-      if (!folded && flaws <= flaws_before && watched_within(s, s.round_max)) {
+      if (!folded && flaws <= flaws_before && watched_within(s, s.round_max) &&
+          faces_within(s, s.round_max)) {
         for (auto w : region) s.touched[static_cast<std::size_t>(w.idx())] = 1;
+        for (std::size_t j = 0; j < watched.size(); ++j)
+          s.upper[static_cast<std::size_t>(watched[j])] = watched_upper[j];
         return true;
       }
       if (flaws > flaws_before + kHopelessFlaws) break;
@@ -210,8 +305,8 @@ struct Worker {
     return false;
   }
 
-  // The move of input vertex c: reads the mesh within kn + 8 rings of the corners of c's nearest face and writes
-  // within kn + 4 (see Schedule).
+  // The move of input vertex c: reads the mesh within kn + 9 rings of the corners of c's nearest face and writes
+  // within kn + 5 (see Schedule).
   void visit(SnapState& s, int c) {
     TriMesh& mesh = s.mesh;
     const Vec3 q = s.input.point(TriMesh::VertexHandle(c));
@@ -248,14 +343,14 @@ struct Worker {
 };
 
 // The moves of a round, on every thread, with the result of one thread taking them in order. A move reads the mesh
-// within kn + 8 rings of the corners of its input vertex's nearest face (its region of kn + 3 rings around a vertex
+// within kn + 9 rings of the corners of its input vertex's nearest face (its region of kn + 4 rings around a vertex
 // next to them, the stars of those, and the 2 rings around the faces nearest the input vertices it watches) and
-// writes within kn + 2 (positions) and kn + 4 (the touched marks, read only at the corners): two moves whose balls
-// of kn + 5 rings around their corners are disjoint are more than 2 kn + 10 rings apart, and neither sees the
+// writes within kn + 3 (positions) and kn + 5 (the touched marks, read only at the corners): two moves whose balls
+// of kn + 6 rings around their corners are disjoint are more than 2 kn + 12 rings apart, and neither sees the
 // other. A move starts once every earlier move whose ball meets its own has finished.
 class Schedule {
  public:
-  Schedule(const TriMesh& mesh, int kn) : mesh_(mesh), rings_(kn + 5), claim_(mesh.n_vertices(), 0) {}
+  Schedule(const TriMesh& mesh, int kn) : mesh_(mesh), rings_(kn + kRelaxRings + 4), claim_(mesh.n_vertices(), 0) {}
 
   // Runs visit(c) for every candidate c (input vertex indices in order).
   template <typename Visit>
@@ -350,7 +445,9 @@ class Schedule {
 
 FarthestInputVertex farthest_input_vertex(const TriMesh& mesh, const TriMesh& input) {
   FarthestInputVertex out;
-  const std::vector<Distance> distances = input_distances(mesh, input);
+  const InputPoints points = input_points(input, /*edges=*/false);
+  std::vector<Distance> distances;
+  measure_input(mesh, points, points.interior, distances);
   for (std::size_t i = 0; i < distances.size(); ++i)
     if (distances[i].face >= 0 && (!out.measured || distances[i].d > out.distance)) {
       out.distance = distances[i].d;
@@ -364,12 +461,21 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
                             double emax, double tolerance) {
   SnapResult result;
   mesh.garbage_collection();  // face indices = positions in triangles_of
-  SnapState state(mesh, input, target, kn, emin, emax);
+  const InputPoints points = input_points(input, /*edges=*/true);
+  const std::size_t nv = points.vertices;
+  SnapState state(mesh, input, points, target, kn, emin, emax);
   state.fixed.assign(mesh.n_vertices(), 0);
   state.touched.assign(mesh.n_vertices(), 0);
-  state.tried.assign(input.n_vertices(), 0);
-  state.next_near.assign(input.n_vertices(), -1);
-  state.distances = input_distances(mesh, input);
+  state.tried.assign(nv, 0);
+  state.next_near.assign(points.points.size(), -1);
+  measure_input(mesh, points, points.all, state.distances);
+  const Triangles input_triangles = triangles_of(input);
+  Tree input_tree(input_triangles.begin(), input_triangles.end());
+  if (!input_triangles.empty()) {  // (else no input vertex is measured and no move is tried)
+    input_tree.build();
+    input_tree.accelerate_distance_queries();
+  }
+  state.input_tree = &input_tree;
   std::vector<Distance>& distances = state.distances;
   std::vector<Worker> workers;
   for (int t = 0; t < max_threads(); ++t) workers.emplace_back(emin, emax);
@@ -383,9 +489,9 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     for (int round = 0; round < kRounds; ++round) {
       const auto round_start = std::chrono::steady_clock::now();
       candidates.clear();
-      for (std::size_t i = 0; i < distances.size(); ++i)
+      for (std::size_t i = 0; i < nv; ++i)
         if (distances[i].d > tolerance && distances[i].face >= 0 && !state.tried[i] &&
-            (!borders || input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i)))))
+            borders == input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
           candidates.push_back(static_cast<int>(i));
       if (round == 0) first_candidates = candidates.size();
       std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
@@ -394,7 +500,11 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
       });
       std::fill(state.touched.begin(), state.touched.end(), 0);
       state.round_max = 0;
-      for (const auto& d : distances) state.round_max = std::max(state.round_max, d.d);
+      state.upper.resize(distances.size());
+      for (std::size_t i = 0; i < distances.size(); ++i) {
+        state.round_max = std::max(state.round_max, distances[i].d);
+        state.upper[i] = distances[i].d;
+      }
       state.first_near.assign(mesh.n_faces(), -1);
       for (std::size_t i = 0; i < distances.size(); ++i)
         if (distances[i].face >= 0) {
@@ -415,11 +525,14 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
         bool stale = false;
         for (auto w : mesh.fv_range(TriMesh::FaceHandle(d.face)))
           stale = stale || state.touched[static_cast<std::size_t>(w.idx())];
-        if (stale) {
-          d = local_distance(mesh, input.point(TriMesh::VertexHandle(static_cast<int>(i))),
-                             TriMesh::FaceHandle(d.face), 3, workers[0].search, workers[0].around);
-          state.tried[i] = 0;  // a new neighbourhood: may be tried again
+        if (!stale) continue;
+        if (state.upper[i] < tolerance) {  // no candidate, and under the farthest point while any is a candidate:
+          d.d = state.upper[i];            // its upper bound is enough (the face kept)
+          continue;
         }
+        d = local_distance(mesh, points.points[i], TriMesh::FaceHandle(d.face), 3, workers[0].search,
+                           workers[0].around, workers[0].around_faces);
+        if (i < nv) state.tried[i] = 0;  // a new neighbourhood: may be tried again
       }
       kept += snapped;
       rounds_run = round + 1;
@@ -432,20 +545,23 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     }
     return kept;
   };
-  for (const auto& d : distances) result.max_before = std::max(result.max_before, d.d);
+  auto interior_max = [&] {
+    double m = 0;
+    for (std::size_t i = 0; i < nv; ++i)
+      if (!input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i)))) m = std::max(m, distances[i].d);
+    return m;
+  };
+  result.max_before = interior_max();
   result.snapped = rounds(false, result.candidates, result.rounds);
   // Then the corners of the input's borders (a scan's holes: the remeshed border, its vertices moved along the
-  // curves through their border edges, cuts them), each pulling the nearest free border vertex onto itself; the
-  // interior input vertices are measured with them, so no move takes the surface farther than the farthest of all.
-  const auto vertices = input.vertices();
-  const bool borders = std::any_of(vertices.begin(), vertices.end(),
-                                   [&](auto v) { return input.is_boundary(v) && measured(input, v, true); });
-  if (borders) distances = input_distances(mesh, input, /*borders=*/true);  // (a closed input: nothing to measure)
+  // curves through their border edges, cuts them), each pulling the nearest free border vertex onto itself. The
+  // interior and border points are measured together in both steps, so no move takes the surface farther than the
+  // farthest of all.
   std::fill(state.tried.begin(), state.tried.end(), 0);
   state.borders = true;
   auto border_max = [&] {
     double m = 0;
-    for (std::size_t i = 0; i < distances.size(); ++i)
+    for (std::size_t i = 0; i < nv; ++i)
       if (distances[i].face >= 0 && input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
         m = std::max(m, distances[i].d);
     return m;
@@ -455,10 +571,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     result.border_snapped = rounds(true, result.border_candidates, result.border_rounds);
   result.border_max_after = border_max();
   for (const auto& w : workers) result.tries += w.tries;
-  result.max_after = 0;  // interior input vertices (the border step may move them too)
-  for (std::size_t i = 0; i < distances.size(); ++i)
-    if (!input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
-      result.max_after = std::max(result.max_after, distances[i].d);
+  result.max_after = interior_max();  // (the border step may move interior vertices too)
   result.fixed = std::move(state.fixed);
   return result;
 }

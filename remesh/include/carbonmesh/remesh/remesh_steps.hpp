@@ -178,12 +178,13 @@ struct SnapResult {
   double border_max_before = 0, border_max_after = 0;
 };
 // Each interior input vertex farther than `tolerance` from `mesh` (farthest first) pulls the nearest free
-// interior vertex of `mesh` onto itself; the interior vertices of its kn+1 rings are relaxed (Error_b with
+// interior vertex of `mesh` onto itself; the interior vertices of its kn+2 rings are relaxed (Error_b with
 // the interval hinge) and projected onto `target`. Kept only if that adds no edge outside [emin, emax], no
-// face under 3 degrees and no folded face, and leaves the input vertices nearest the moved faces nearer than the
-// farthest input vertex was (the farthest distance never grows); with every edge inside before they all stay
-// inside. Then the same for the input's border vertices, each pulling the nearest free border vertex of `mesh`
-// onto itself (the interior input vertices measured with them for the farthest distance).
+// face under 3 degrees and no folded face, and leaves the input vertices and input edge midpoints nearest the moved
+// faces, and the moved faces themselves, nearer the input than the farthest of those input points was (that
+// distance never grows); with every edge inside before they all stay inside. Then the same for the input's border
+// vertices, each pulling the nearest free border vertex of `mesh` onto itself (interior and border points measured
+// together for the farthest distance).
 SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                             double emax, double tolerance);
 

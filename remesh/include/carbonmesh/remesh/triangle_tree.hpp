@@ -7,6 +7,8 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "carbonmesh/remesh/mesh.hpp"
@@ -34,6 +36,17 @@ inline Triangles triangles_of(const TriMesh& mesh) {
     out.emplace_back(a, b, c);
   }
   return out;
+}
+
+// The largest distance to the tree's surface of seven points of the triangle a, b, c: its centroid, its edge
+// midpoints and the points a third of the way from the centroid to each corner.
+inline double face_distance(const Tree& tree, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 g = (a + b + c) / 3.0;
+  double worst = 0;
+  for (const Vec3& p : {g, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (2.0 * g + a) / 3.0, (2.0 * g + b) / 3.0,
+                        (2.0 * g + c) / 3.0})
+    worst = std::max(worst, tree.squared_distance(to_point(p)));
+  return std::sqrt(worst);
 }
 
 }  // namespace carbonmesh::triangle_tree
