@@ -159,7 +159,9 @@ struct SnapState {
   double emin, emax;
   std::vector<char> fixed, touched, tried;
   std::vector<Distance> distances;
-  std::vector<double> upper;  // upper bounds of the input points' distances in the round (kept moves raise them)
+  // Upper bounds of the input points' distances in the round, each the distance to one face at most (kept moves
+  // update them).
+  std::vector<Distance> upper;
   // Input vertices by their nearest face (as measured at the start of the round): first_near[f], then next_near[i].
   std::vector<int> first_near, next_near;
   double round_max = 0;  // the farthest input vertex at the start of the round
@@ -175,7 +177,7 @@ struct Worker {
   std::vector<TriMesh::FaceHandle> region_faces;
   std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
   std::vector<TriMesh::FaceHandle> moved_faces, around_faces;
-  std::vector<double> watched_upper;
+  std::vector<Distance> watched_upper;
   std::vector<unsigned> moved_mark;  // == move_stamp: moved in this move, from moved_from
   std::vector<Vec3> moved_from;
   unsigned move_stamp = 0;
@@ -192,11 +194,10 @@ struct Worker {
     s.mesh.set_point(v, s.target.project(s.mesh.point(v), neighbors));
   }
 
-  double measure(const SnapState& s, int i) {
+  Distance measure(const SnapState& s, int i) {
     return local_distance(s.mesh, s.points.points[static_cast<std::size_t>(i)],
                           TriMesh::FaceHandle(s.distances[static_cast<std::size_t>(i)].face), 2, search, around,
-                          around_faces)
-        .d;
+                          around_faces);
   }
 
   static double distance_to_input(const SnapState& s, TriMesh::FaceHandle f) {
@@ -222,17 +223,19 @@ struct Worker {
     return shift;
   }
 
-  // After a move: whether every watched input point is nearer than `limit`. A point's distance grows by no more than
-  // the corners of its nearest face moved (the point of the moved face at the same barycentric coordinates is no
-  // farther), so a point whose bound stays under the limit is not measured (the bounds, in watched_upper, become the
-  // points' upper bounds if the move is kept).
+  // After a move: whether every watched input point is nearer than `limit`. A point's distance to a face grows by no
+  // more than the face's corners moved (the point of the moved face at the same barycentric coordinates is no
+  // farther), so a point whose bound (its upper bound, to its bounding face, plus that face's shift) stays under the
+  // limit is not measured; the bounds or distances, in watched_upper, become the points' upper bounds if the move is
+  // kept.
   bool watched_within(const SnapState& s, double limit) {
     watched_upper.clear();
     for (const int i : watched) {
       const auto k = static_cast<std::size_t>(i);
-      const double bound = s.upper[k] + corner_shift(s, s.distances[k].face);
-      const double d = bound < limit * (1 - 1e-9) ? bound : measure(s, i);
-      if (d >= limit) return false;
+      Distance d = s.upper[k];
+      d.d += corner_shift(s, d.face);
+      if (d.d >= limit * (1 - 1e-9)) d = measure(s, i);
+      if (d.d >= limit) return false;
       watched_upper.push_back(d);
     }
     return true;
@@ -500,11 +503,8 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
       });
       std::fill(state.touched.begin(), state.touched.end(), 0);
       state.round_max = 0;
-      state.upper.resize(distances.size());
-      for (std::size_t i = 0; i < distances.size(); ++i) {
-        state.round_max = std::max(state.round_max, distances[i].d);
-        state.upper[i] = distances[i].d;
-      }
+      state.upper = distances;
+      for (const auto& d : distances) state.round_max = std::max(state.round_max, d.d);
       state.first_near.assign(mesh.n_faces(), -1);
       for (std::size_t i = 0; i < distances.size(); ++i)
         if (distances[i].face >= 0) {
@@ -526,8 +526,8 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
         for (auto w : mesh.fv_range(TriMesh::FaceHandle(d.face)))
           stale = stale || state.touched[static_cast<std::size_t>(w.idx())];
         if (!stale) continue;
-        if (state.upper[i] < tolerance) {  // no candidate, and under the farthest point while any is a candidate:
-          d.d = state.upper[i];            // its upper bound is enough (the face kept)
+        if (state.upper[i].d < tolerance) {  // no candidate, and under the farthest point while any is a candidate:
+          d = state.upper[i];                // its upper bound is enough
           continue;
         }
         d = local_distance(mesh, points.points[i], TriMesh::FaceHandle(d.face), 3, workers[0].search,
