@@ -247,7 +247,7 @@ struct Worker {
   // stricter one, nearer than the farthest of the watched vertices, lowered armadillo's Hausdorff maximum 0.589 ->
   // 0.537 but raised bunny's 0.798 -> 0.850 and its RMS, 2M samples), and so does every face it moved (with kn + 2
   // rings relaxed and without this check the moved faces went 0.51 from armadillo's input, 2M samples; a stricter
-  // one, each face no farther than it was or than the tolerance, kept a third fewer moves and raised the maxima).
+  // one, each face no farther than it was or than the tolerance, kept 40% fewer moves and raised the maxima).
   bool try_snap(SnapState& s, TriMesh::VertexHandle v, const Vec3& q) {
     TriMesh& mesh = s.mesh;
     local.collect(mesh, v, s.kn + kRelaxRings + 2, region);  // every vertex the relaxation moves, with their stars
