@@ -12,8 +12,8 @@
 // never grows, and the moved faces do not go farther from the input than that either); otherwise every position is
 // restored. Farthest input vertices first, in rounds: the distances of the input points next to a kept move are
 // measured again (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move
-// failed are tried again in a new neighbourhood. Moves far enough apart that neither can see the other run on all threads
-// (Schedule below), with the result of one thread taking them in order.
+// failed are tried again in a new neighbourhood. Moves far enough apart that neither can see the other run on all
+// threads (Schedule below), with the result of one thread taking them in order.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -146,7 +146,7 @@ int thread_index() {
 #endif
 }
 
-// What every move of a round reads and writes: the mesh, the input vertices' distances as measured at the start of
+// What every move of a round reads and writes: the mesh, the input points' distances as measured at the start of
 // the round, and the per-vertex marks.
 struct SnapState {
   SnapState(TriMesh& m, const TriMesh& in, const InputPoints& p, const ProjectionTarget& t, int k, double lo, double hi)
@@ -162,9 +162,9 @@ struct SnapState {
   // Upper bounds of the input points' distances in the round, each the distance to one face at most (kept moves
   // update them).
   std::vector<Distance> upper;
-  // Input vertices by their nearest face (as measured at the start of the round): first_near[f], then next_near[i].
+  // Input points by their nearest face (as measured at the start of the round): first_near[f], then next_near[i].
   std::vector<int> first_near, next_near;
-  double round_max = 0;  // the farthest input vertex at the start of the round
+  double round_max = 0;  // the farthest input point at the start of the round
   const Tree* input_tree = nullptr;  // the input's faces
   bool borders = false;   // the step for the input's border vertices: border vertices slide in the relaxation too
 };
@@ -279,10 +279,12 @@ struct Worker {
     ++move_stamp;
     moved_mark.resize(mesh.n_vertices(), 0);
     moved_from.resize(mesh.n_vertices());
-    for (auto w : variables) moved_mark[static_cast<std::size_t>(w.idx())] = move_stamp;
-    moved_mark[static_cast<std::size_t>(v.idx())] = move_stamp;
-    for (auto w : variables) moved_from[static_cast<std::size_t>(w.idx())] = mesh.point(w);
-    moved_from[static_cast<std::size_t>(v.idx())] = mesh.point(v);
+    auto mark_moved = [&](TriMesh::VertexHandle w) {
+      moved_mark[static_cast<std::size_t>(w.idx())] = move_stamp;
+      moved_from[static_cast<std::size_t>(w.idx())] = mesh.point(w);
+    };
+    for (auto w : variables) mark_moved(w);
+    mark_moved(v);
     saved.assign(1, {v, mesh.point(v)});
     mesh.set_point(v, q);
     s.fixed[static_cast<std::size_t>(v.idx())] = 1;
