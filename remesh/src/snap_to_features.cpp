@@ -46,7 +46,9 @@ constexpr int kRelaxRings = 2;      // the free vertices within kn + 2 rings of 
                                      // remeshed vertices, stayed 0.542 from the result; kn + 2: 0.482; kn + 3: 0.490,
                                      // the snap twice as long as with kn + 1)
 constexpr int kPasses = 3;           // relax-and-project passes before a move is given up (kept at the first
-                                     // clean one)
+                                     // clean one; given up after the second if that left no fewer flaws than the
+                                     // first: on bunny, armadillo and a sphere with 2% noise 10 of 437 such third
+                                     // passes kept a move, 21 of 338 where the second had reduced them)
 constexpr double kProgressSeconds = 1.0;  // a round that takes longer is logged at info level (else debug)
 constexpr std::size_t kHopelessFlaws = 8;  // more new flaws than this after a pass: given up at once (no kept move on
                                            // the seven seed-protocol models or a sphere with 2% noise had more than 8
@@ -288,6 +290,7 @@ struct Worker {
     saved.assign(1, {v, mesh.point(v)});
     mesh.set_point(v, q);
     s.fixed[static_cast<std::size_t>(v.idx())] = 1;
+    std::size_t last_flaws = 0;
     for (int pass = 0; pass < kPasses; ++pass) {
       for (auto w : variables) saved.emplace_back(w, mesh.point(w));
       optimize_vertices(mesh, variables, s.emin, s.emax);
@@ -304,6 +307,8 @@ struct Worker {
         return true;
       }
       if (flaws > flaws_before + kHopelessFlaws) break;
+      if (pass > 0 && flaws >= last_flaws) break;  // no progress: the third pass would rarely clear them
+      last_flaws = flaws;
     }
     for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
     s.fixed[static_cast<std::size_t>(v.idx())] = 0;
