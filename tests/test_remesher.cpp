@@ -127,6 +127,56 @@ TEST(Remesher, RegularizeKeepsTheIntervalAndRaisesRegularity) {
   EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
   EXPECT_LE(eval(mesh), before);
 }
+// regularize() runs its flip chains on every thread (OrderedSchedule): a torus 210 wide, converged and then given
+// valence defects by flipping every fifth edge (where no flip is beside another), is regularized into the same mesh
+// on two threads as on one.
+TEST(Remesher, RegularizeGivesTheSameMeshOnTwoThreadsAsOnOne) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP";
+#else
+  TriMesh converged = make_torus({100.0, 5.0, 2.25});
+  RemeshSettings settings;
+  settings.snap_features = settings.fit_surface = false;
+  ASSERT_TRUE(remesh(converged, settings).converged);
+  const TriMesh target_mesh = converged;
+  std::vector<char> touched(converged.n_vertices(), 0);
+  std::size_t defects = 0;
+  for (auto e : converged.edges()) {
+    if (e.idx() % 5 != 0 || !converged.is_flip_ok(e)) continue;
+    const auto h = converged.halfedge_handle(e, 0), o = converged.halfedge_handle(e, 1);
+    const TriMesh::VertexHandle q[4] = {converged.from_vertex_handle(h), converged.to_vertex_handle(h),
+                                        converged.to_vertex_handle(converged.next_halfedge_handle(h)),
+                                        converged.to_vertex_handle(converged.next_halfedge_handle(o))};
+    bool free = true;
+    for (auto v : q) free = free && !touched[static_cast<std::size_t>(v.idx())];
+    if (!free) continue;
+    converged.flip(e);
+    for (auto v : q) touched[static_cast<std::size_t>(v.idx())] = 1;
+    ++defects;
+  }
+  ASSERT_GT(defects, 500u);
+  const ProjectionTarget target(target_mesh);
+  auto regularized = [&](int threads, std::size_t& flips) {
+    omp_set_num_threads(threads);
+    TriMesh mesh = converged;
+    flips = regularize(mesh, target, settings.kn, settings.emin, settings.emax);
+    omp_set_num_threads(omp_get_num_procs());
+    return mesh;
+  };
+  std::size_t flips_one = 0, flips_two = 0;
+  const TriMesh one = regularized(1, flips_one), two = regularized(2, flips_two);
+  EXPECT_GT(flips_one, defects / 2);
+  EXPECT_EQ(flips_one, flips_two);
+  EXPECT_GT(valence_stats(one).percent_regular, valence_stats(converged).percent_regular + 10);
+  ASSERT_EQ(one.n_vertices(), two.n_vertices());
+  for (auto v : one.vertices()) ASSERT_EQ(one.point(v), two.point(v)) << "vertex " << v.idx();
+  for (auto f : one.faces()) {
+    auto a = one.cfv_begin(f), b = two.cfv_begin(TriMesh::FaceHandle(f.idx()));
+    for (int i = 0; i < 3; ++i, ++a, ++b) ASSERT_EQ(a->idx(), b->idx()) << "face " << f.idx();
+  }
+#endif
+}
+
 // One large triangle (edges 100) in z = 0 and, 3 above it, a dense patch of 121 vertices beside the query point:
 // the 10 target vertices nearest to a point 0.5 over the large triangle are all on the patch, so without
 // bisection Algorithm 4 sees only patch faces and lands 2.5 or more away. Bisected to edges <= 5, the large

@@ -1,11 +1,22 @@
 // Section 4.2: valence optimizer with a priority list (Algorithm 2).
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
-#include <functional>
+#include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <spdlog/spdlog.h>
 
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "ordered_schedule.hpp"
 #include "per_element.hpp"
 #include "remesh_geometry.hpp"
 
@@ -164,35 +175,223 @@ bool valence_defect(const FlipQuad& q, const std::vector<int>& valence, const st
   return false;
 }
 
+// What regularize's flips share: the mesh and its valences, the vertices changed in this pass, and the limits.
+struct FlipContext {
+  TriMesh& mesh;
+  const ProjectionTarget& target;
+  ValenceTable& table;
+  std::vector<char>& changed;
+  int kn;
+  double emin, emax;
+  // With an anchor (the chain stage), a settle that leaves a vertex farther than max_drift from its anchor is undone.
+  const std::vector<Vec3>* anchor = nullptr;
+  double max_drift = std::numeric_limits<double>::infinity();
+};
+
+// One thread's flips (settle() and the chains of flips) with their scratch space.
+class Flipper {
+ public:
+  explicit Flipper(FlipContext& c) : c_(c), mark_(c.mesh.n_vertices(), 0) {}
+
+  std::size_t kept = 0, skipped = 0;
+
+  void count_flip(const FlipQuad& q, int sign) {
+    auto& valence = c_.table.valence;
+    valence[static_cast<std::size_t>(q.a.idx())] -= sign;
+    valence[static_cast<std::size_t>(q.b.idx())] -= sign;
+    valence[static_cast<std::size_t>(q.c.idx())] += sign;
+    valence[static_cast<std::size_t>(q.d.idx())] += sign;
+  }
+
+  // Flips `edges` (already flipped in the mesh, quads `quads`) are kept if every edge around is inside, after
+  // relaxing the kn-stars of the new edges and projecting, with no vertex drifted from its anchor; else
+  // everything is restored.
+  bool settle(const std::vector<TriMesh::EdgeHandle>& edges, const std::vector<FlipQuad>& quads) {
+    TriMesh& mesh = c_.mesh;
+    auto all_inside = [&] {
+      for (const FlipQuad& q : quads)
+        for (auto v : {q.a, q.b, q.c, q.d})
+          if (!geometry::star_inside(mesh, v, c_.emin, c_.emax)) return false;
+      return true;
+    };
+    if (all_inside()) {
+      mark_changed(quads);
+      return true;
+    }
+    saved_.clear();
+    for (auto e : edges) {
+      optimize_edge_region(mesh, e, c_.kn, c_.emin, c_.emax, moved_);
+      saved_.insert(saved_.end(), moved_.begin(), moved_.end());
+      for (const auto& [v, before] : moved_) {
+        neighbors_.clear();
+        for (auto w : mesh.vv_range(v)) neighbors_.push_back(mesh.point(w));
+        mesh.set_point(v, c_.target.project(mesh.point(v), neighbors_));
+      }
+    }
+    bool ok = all_inside();
+    for (const auto& [v, before] : saved_)
+      ok = ok && geometry::star_inside(mesh, v, c_.emin, c_.emax) &&
+           (!c_.anchor || (mesh.point(v) - (*c_.anchor)[static_cast<std::size_t>(v.idx())]).norm() <= c_.max_drift);
+    if (ok) {
+      mark_changed(quads);
+      for (const auto& [v, before] : saved_) c_.changed[static_cast<std::size_t>(v.idx())] = 1;
+      return true;
+    }
+    for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) mesh.set_point(it->first, it->second);
+    for (std::size_t i = edges.size(); i-- > 0;) {
+      mesh.flip(edges[i]);
+      count_flip(quads[i], -1);
+    }
+    return false;
+  }
+
+  // The chain from the E_val-neutral flip of e. With a `centre` (on every thread: see the chain stage) the chain
+  // runs only if every vertex within `rings` of e's ends lies within `radius` of it; else it is skipped.
+  void chain_from(TriMesh::EdgeHandle e, const Vec3* centre = nullptr, int rings = 0, double radius = 0) {
+    TriMesh& mesh = c_.mesh;
+    const auto& valence = c_.table.valence;
+    const auto& ideal = c_.table.ideal;
+    if (centre && !within(e, 2, *centre, radius)) {  // what the quick tests below read
+      ++skipped;
+      return;
+    }
+    if (mesh.status(e).deleted() || mesh.is_boundary(e)) return;
+    const FlipQuad q = quad(mesh, e);
+    if (improvement(q, valence, ideal) != 0 || !mesh.is_flip_ok(e) || !flip_geometry_ok(mesh, q)) return;
+    if (centre && !within(e, rings, *centre, radius)) {
+      ++skipped;
+      return;
+    }
+    mesh.flip(e);
+    count_flip(q, 1);
+    chain_.assign(1, e);
+    chain_quads_.assign(1, q);
+    if (extend(kChainDepth)) {
+      ++kept;
+    } else if (!chain_.empty()) {
+      mesh.flip(e);
+      count_flip(q, -1);
+    }
+  }
+
+ private:
+  void mark_changed(const std::vector<FlipQuad>& quads) {
+    for (const FlipQuad& q : quads)
+      for (auto v : {q.a, q.b, q.c, q.d}) c_.changed[static_cast<std::size_t>(v.idx())] = 1;
+  }
+
+  // Whether every vertex within `rings` of e's ends lies within `radius` of `centre` (breadth first, stopping at the
+  // first that does not).
+  bool within(TriMesh::EdgeHandle e, int rings, const Vec3& centre, double radius) {
+    const TriMesh& mesh = c_.mesh;
+    ++stamp_;
+    queue_.clear();
+    ring_.clear();
+    auto visit = [&](TriMesh::VertexHandle v, int r) {
+      unsigned& m = mark_[static_cast<std::size_t>(v.idx())];
+      if (m == stamp_) return true;
+      m = stamp_;
+      if ((mesh.point(v) - centre).sqrnorm() > radius * radius) return false;
+      queue_.push_back(v);
+      ring_.push_back(r);
+      return true;
+    };
+    const auto h = mesh.halfedge_handle(e, 0);
+    if (!visit(mesh.from_vertex_handle(h), 0) || !visit(mesh.to_vertex_handle(h), 0)) return false;
+    for (std::size_t i = 0; i < queue_.size(); ++i) {
+      if (ring_[i] == rings) continue;
+      for (auto w : mesh.vv_range(queue_[i]))
+        if (!visit(w, ring_[i] + 1)) return false;
+    }
+    return true;
+  }
+
+  // Depth-first: flip `e` (E_val unchanged), then look at the edges at its quad's vertices for a flip lowering
+  // E_val (kept with the whole chain if settle() accepts), else go one E_val-neutral flip deeper.
+  bool extend(int depth) {
+    TriMesh& mesh = c_.mesh;
+    const auto& valence = c_.table.valence;
+    const auto& ideal = c_.table.ideal;
+    const FlipQuad last = chain_quads_.back();
+    TriMesh::EdgeHandle second;
+    int best = 0;
+    std::vector<TriMesh::EdgeHandle> neutral;
+    for (auto v : {last.a, last.b, last.c, last.d})
+      for (auto h : mesh.voh_range(v)) {
+        const auto f = mesh.edge_handle(h);
+        if (mesh.is_boundary(f) || std::find(chain_.begin(), chain_.end(), f) != chain_.end()) continue;
+        const int g = improvement(quad(mesh, f), valence, ideal);
+        if (g > best || (g == best && g > 0 && f.idx() < second.idx())) best = g, second = f;
+        if (g == 0 && depth > 0) neutral.push_back(f);
+      }
+    if (best > 0 && mesh.is_flip_ok(second) && flip_geometry_ok(mesh, quad(mesh, second))) {
+      const FlipQuad q2 = quad(mesh, second);
+      mesh.flip(second);
+      count_flip(q2, 1);
+      chain_.push_back(second);
+      chain_quads_.push_back(q2);
+      if (settle(chain_, chain_quads_)) return true;  // settle() undid every flip of the chain otherwise
+      chain_.clear();
+      chain_quads_.clear();
+      return false;
+    }
+    std::sort(neutral.begin(), neutral.end(), [](auto x, auto y) { return x.idx() < y.idx(); });
+    neutral.erase(std::unique(neutral.begin(), neutral.end()), neutral.end());
+    for (auto f : neutral) {
+      const FlipQuad qf = quad(mesh, f);
+      if (!mesh.is_flip_ok(f) || !flip_geometry_ok(mesh, qf)) continue;
+      mesh.flip(f);
+      count_flip(qf, 1);
+      chain_.push_back(f);
+      chain_quads_.push_back(qf);
+      const std::size_t size = chain_.size();
+      if (extend(depth - 1)) return true;
+      if (chain_.size() < size) return false;  // a deeper settle() failed and restored everything
+      mesh.flip(f);
+      count_flip(qf, -1);
+      chain_.pop_back();
+      chain_quads_.pop_back();
+    }
+    return false;
+  }
+
+  FlipContext& c_;
+  std::vector<std::pair<TriMesh::VertexHandle, Vec3>> moved_, saved_;
+  std::vector<Vec3> neighbors_;
+  std::vector<TriMesh::EdgeHandle> chain_;
+  std::vector<FlipQuad> chain_quads_;
+  std::vector<unsigned> mark_;
+  unsigned stamp_ = 0;
+  std::vector<TriMesh::VertexHandle> queue_;
+  std::vector<int> ring_;
+};
+
+int max_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
 }  // namespace
 
 std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax,
                        int max_passes) {
   ValenceTable table(mesh);
-  std::vector<int>& valence = table.valence;
+  const std::vector<int>& valence = table.valence;
   const std::vector<int>& ideal = table.ideal;
   auto gain = [&](TriMesh::EdgeHandle e) { return table.gain(mesh, e); };
-  auto count_flip = [&](const FlipQuad& q, int sign) {
-    valence[static_cast<std::size_t>(q.a.idx())] -= sign;
-    valence[static_cast<std::size_t>(q.b.idx())] -= sign;
-    valence[static_cast<std::size_t>(q.c.idx())] += sign;
-    valence[static_cast<std::size_t>(q.d.idx())] += sign;
-  };
-  std::vector<std::pair<TriMesh::VertexHandle, Vec3>> moved, saved;
-  std::vector<Vec3> neighbors;
-  // A chain that failed fails again unless the mesh changed within its reach: the chain's flips stay within
-  // kChainDepth + 1 rings of its first edge, settle() moves kn rings around them and checks the stars of the moved
-  // vertices. After the first pass, the E_val-neutral starts are tried only near a vertex that a kept flip
-  // changed or moved in the previous pass (1 million atoms: the passes after the first took 1.3 s, most of it
-  // on chains that had already failed).
+  // A chain reads the mesh within `reach` rings of its first edge: its flips' quads lie within kChainDepth + 2
+  // rings of that edge's ends (each flip is of an edge at the previous quad), settle() relaxes kn - 1 rings around
+  // their new edges, reading one ring beyond those and the faces across their outer edges.
   const int reach = kChainDepth + kn + 3;
+  // A chain that failed fails again unless the mesh changed within its reach. After the first pass, the
+  // E_val-neutral starts are tried only near a vertex that a kept flip changed or moved in the previous pass
+  // (1 million atoms: the passes after the first took 1.3 s, most of it on chains that had already failed).
   const std::size_t nv = mesh.n_vertices();
   std::vector<char> changed(nv, 0), near(nv, 1);
   std::vector<int> ring(nv, -1);
-  auto mark_changed = [&](const std::vector<FlipQuad>& quads) {
-    for (const FlipQuad& q : quads)
-      for (auto v : {q.a, q.b, q.c, q.d}) changed[static_cast<std::size_t>(v.idx())] = 1;
-  };
   auto spread_near = [&] {  // near = within `reach` rings of a changed vertex (breadth first)
     std::fill(near.begin(), near.end(), 0);
     std::fill(ring.begin(), ring.end(), -1);
@@ -211,8 +410,15 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
     }
     std::fill(changed.begin(), changed.end(), 0);
   };
-  std::size_t total = 0;
+  FlipContext context{mesh, target, table, changed, kn, emin, emax};
+  std::vector<Flipper> flippers;
+  for (int t = 0; t < max_threads(); ++t) flippers.emplace_back(context);
+  std::size_t total = 0, skipped = 0;
+  auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
   for (int pass = 0; pass < max_passes; ++pass) {
+    const auto pass_start = std::chrono::steady_clock::now();
     struct Entry {
       int gain;
       int edge;
@@ -225,56 +431,22 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
     std::sort(list.begin(), list.end(), [](const Entry& x, const Entry& y) {
       return x.gain != y.gain ? x.gain > y.gain : x.edge < y.edge;
     });
-    std::size_t flips = 0;
-    // Flips `edges` (already flipped in the mesh, quads `quads`) are kept if every edge around is inside,
-    // after relaxing the kn-stars of the new edges and projecting; else everything is restored.
-    auto settle = [&](const std::vector<TriMesh::EdgeHandle>& edges, const std::vector<FlipQuad>& quads) {
-      auto all_inside = [&] {
-        for (const FlipQuad& q : quads)
-          for (auto v : {q.a, q.b, q.c, q.d})
-            if (!geometry::star_inside(mesh, v, emin, emax)) return false;
-        return true;
-      };
-      if (all_inside()) {
-        mark_changed(quads);
-        return true;
-      }
-      saved.clear();
-      for (auto e : edges) {
-        optimize_edge_region(mesh, e, kn, emin, emax, moved);
-        saved.insert(saved.end(), moved.begin(), moved.end());
-        for (const auto& [v, before] : moved) {
-          neighbors.clear();
-          for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
-          mesh.set_point(v, target.project(mesh.point(v), neighbors));
-        }
-      }
-      bool ok = all_inside();
-      for (const auto& [v, before] : saved) ok = ok && geometry::star_inside(mesh, v, emin, emax);
-      if (ok) {
-        mark_changed(quads);
-        for (const auto& [v, before] : saved) changed[static_cast<std::size_t>(v.idx())] = 1;
-        return true;
-      }
-      for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
-      for (std::size_t i = edges.size(); i-- > 0;) {
-        mesh.flip(edges[i]);
-        count_flip(quads[i], -1);
-      }
-      return false;
-    };
+    for (auto& f : flippers) f.kept = 0;
+    Flipper& first = flippers[0];
     for (const Entry& entry : list) {
       const TriMesh::EdgeHandle e(entry.edge);
       if (gain(e) <= 0 || !mesh.is_flip_ok(e)) continue;
       const FlipQuad q = quad(mesh, e);
       if (!flip_geometry_ok(mesh, q)) continue;
       mesh.flip(e);
-      count_flip(q, 1);
-      if (settle({e}, {q})) ++flips;
+      first.count_flip(q, 1);
+      if (first.settle({e}, {q})) ++first.kept;
     }
+    const std::size_t single = first.kept;
+    const double single_seconds = seconds_since(pass_start);
+    const auto chains_start = std::chrono::steady_clock::now();
     // Pairs: a flip that leaves E_val unchanged (moving a 5-7 pair) followed by a flip of an edge at one of
     // its four vertices, together lowering E_val.
-    std::vector<int> zero;
     auto is_near = [&](const FlipQuad& q) {
       for (auto v : {q.a, q.b, q.c, q.d})
         if (near[static_cast<std::size_t>(v.idx())]) return true;
@@ -285,75 +457,70 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
       return !mesh.status(e).deleted() && !mesh.is_boundary(e) && improvement(quad(mesh, e), valence, ideal) == 0 &&
              valence_defect(quad(mesh, e), valence, ideal) && is_near(quad(mesh, e));
     });
+    std::vector<int> zero;
     for (int i = 0; i < static_cast<int>(start.size()); ++i)
       if (start[static_cast<std::size_t>(i)]) zero.push_back(i);
-    // Depth-first: flip `e` (E_val unchanged), then look at the edges at its quad's vertices for a flip
-    // lowering E_val (kept with the whole chain if settle() accepts), else go one E_val-neutral flip deeper.
-    std::vector<TriMesh::EdgeHandle> chain;
-    std::vector<FlipQuad> chain_quads;
-    std::function<bool(int)> extend = [&](int depth) {
-      const FlipQuad& last = chain_quads.back();
-      TriMesh::EdgeHandle second;
-      int best = 0;
-      std::vector<TriMesh::EdgeHandle> neutral;
-      for (auto v : {last.a, last.b, last.c, last.d})
-        for (auto h : mesh.voh_range(v)) {
-          const auto f = mesh.edge_handle(h);
-          if (mesh.is_boundary(f) || std::find(chain.begin(), chain.end(), f) != chain.end()) continue;
-          const int g = improvement(quad(mesh, f), valence, ideal);
-          if (g > best || (g == best && g > 0 && f.idx() < second.idx())) best = g, second = f;
-          if (g == 0 && depth > 0) neutral.push_back(f);
-        }
-      if (best > 0 && mesh.is_flip_ok(second) && flip_geometry_ok(mesh, quad(mesh, second))) {
-        const FlipQuad q2 = quad(mesh, second);
-        mesh.flip(second);
-        count_flip(q2, 1);
-        chain.push_back(second);
-        chain_quads.push_back(q2);
-        if (settle(chain, chain_quads)) return true;  // settle() undid every flip of the chain otherwise
-        chain.clear();
-        chain_quads.clear();
-        return false;
-      }
-      std::sort(neutral.begin(), neutral.end(), [](auto x, auto y) { return x.idx() < y.idx(); });
-      neutral.erase(std::unique(neutral.begin(), neutral.end()), neutral.end());
-      for (auto f : neutral) {
-        const FlipQuad qf = quad(mesh, f);
-        if (!mesh.is_flip_ok(f) || !flip_geometry_ok(mesh, qf)) continue;
-        mesh.flip(f);
-        count_flip(qf, 1);
-        chain.push_back(f);
-        chain_quads.push_back(qf);
-        const std::size_t size = chain.size();
-        if (extend(depth - 1)) return true;
-        if (chain.size() < size) return false;  // a deeper settle() failed and restored everything
-        mesh.flip(f);
-        count_flip(qf, -1);
-        chain.pop_back();
-        chain_quads.pop_back();
-      }
-      return false;
-    };
-    for (int index : zero) {
-      const TriMesh::EdgeHandle e(index);
-      if (mesh.status(e).deleted() || mesh.is_boundary(e)) continue;
-      const FlipQuad q = quad(mesh, e);
-      if (improvement(q, valence, ideal) != 0 || !mesh.is_flip_ok(e) || !flip_geometry_ok(mesh, q)) continue;
-      mesh.flip(e);
-      count_flip(q, 1);
-      chain.assign(1, e);
-      chain_quads.assign(1, q);
-      if (extend(kChainDepth)) {
-        ++flips;
-      } else if (!chain.empty()) {
-        mesh.flip(e);
-        count_flip(q, -1);
-      }
+    // The chains on every thread, with the result of one thread taking them in order (OrderedSchedule): chains
+    // that run side by side touch nothing in common. No edge is longer than `longest` here, and the chains keep every
+    // vertex within `longest` of where it is here. A chain runs only if the vertices within `reach` + 1 rings of its
+    // first edge lie within `radius` of that edge's midpoint here (its centre); it writes only within `reach` - 2
+    // rings. So a chain B whose centre is farther than 2 `ball` from a running chain A's reaches none of A's
+    // vertices: B's first edge's ends are within 1.5 `longest` of B's centre, and a path from them into A's
+    // `reach` + 1 rings meets first a vertex of their outer ring, which A does not move and which lies within
+    // `radius` of A's centre, so out of B's own. The chains are taken by colour of cells of side 2 `ball` (8
+    // colours, each cell's chains in edge order), and the chains of cells of one colour run side by side.
+    const std::vector<double> lengths =
+        per_element(mesh.n_edges(), [&](int i) { return geometry::edge_length(mesh, TriMesh::EdgeHandle(i)); });
+    double longest = emax;
+    for (double l : lengths) longest = std::max(longest, l);
+    std::vector<Vec3> anchor(nv);
+    for (std::size_t v = 0; v < nv; ++v) anchor[v] = mesh.point(TriMesh::VertexHandle(static_cast<int>(v)));
+    context.anchor = &anchor;
+    context.max_drift = longest;
+    const int rings = reach + 1;
+    const double radius = (rings + 2) * longest;
+    const double ball = radius + 2 * longest, side = 2 * ball;
+    std::vector<Vec3> centres(zero.size());
+    Vec3 origin(0, 0, 0);
+    for (std::size_t k = 0; k < zero.size(); ++k) {
+      const auto h = mesh.halfedge_handle(TriMesh::EdgeHandle(zero[k]), 0);
+      centres[k] = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+      for (int a = 0; a < 3; ++a) origin[a] = k == 0 ? centres[k][a] : std::min(origin[a], centres[k][a]);
     }
+    struct Start {
+      int colour;
+      std::array<long, 3> cell;
+      int edge;
+      Vec3 centre;
+    };
+    std::vector<Start> starts;
+    for (std::size_t k = 0; k < zero.size(); ++k) {
+      Start s{0, {}, zero[k], centres[k]};
+      for (int a = 0; a < 3; ++a) {
+        s.cell[static_cast<std::size_t>(a)] = static_cast<long>(std::floor((centres[k][a] - origin[a]) / side));
+        s.colour = 2 * s.colour + static_cast<int>(s.cell[static_cast<std::size_t>(a)] & 1);
+      }
+      starts.push_back(s);
+    }
+    std::sort(starts.begin(), starts.end(), [](const Start& x, const Start& y) {
+      return std::tie(x.colour, x.cell, x.edge) < std::tie(y.colour, y.cell, y.edge);
+    });
+    for (std::size_t k = 0; k < starts.size(); ++k) centres[k] = starts[k].centre;
+    OrderedSchedule(centres, ball).run([&](std::size_t k, int thread) {
+      flippers[static_cast<std::size_t>(thread)].chain_from(TriMesh::EdgeHandle(starts[k].edge), &starts[k].centre,
+                                                            rings, radius);
+    });
+    context.anchor = nullptr;
+    std::size_t flips = 0;
+    for (auto& f : flippers) flips += f.kept;
+    spdlog::debug("regularize, pass {}: {} single flips, {:.3f}s; {} chains kept of {} starts, {:.3f}s", pass + 1,
+                  single, single_seconds, flips - single, starts.size(), seconds_since(chains_start));
     total += flips;
     if (flips == 0) break;
     spread_near();
   }
+  for (const auto& f : flippers) skipped += f.skipped;
+  if (skipped > 0) spdlog::debug("regularize: {} chains not tried, their region too far from their start", skipped);
   return total;
 }
 

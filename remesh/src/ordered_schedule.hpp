@@ -1,0 +1,122 @@
+#pragma once
+// Tasks on every thread with the result of one thread running them in order. Each task reads and writes the mesh
+// only near a point, within a radius common to all; a task starts once every earlier task whose ball may meet its
+// own has finished, so tasks that run at the same time touch nothing in common. Internal (regularize's chains).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <queue>
+#include <utility>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "carbonmesh/remesh/mesh.hpp"
+
+namespace carbonmesh {
+
+class OrderedSchedule {
+ public:
+  // Task k touches the mesh only within `radius` of centres[k].
+  OrderedSchedule(const std::vector<Vec3>& centres, double radius) : tasks_(centres.size()) {
+    // Two balls that meet share a point, and that point's cell lies in the boxes of both: the cells (side 2 radius,
+    // at most 8 per ball) of each ball's bounding box stand for it.
+    Vec3 origin(0, 0, 0), top(0, 0, 0);
+    for (std::size_t k = 0; k < tasks_; ++k)
+      for (int a = 0; a < 3; ++a) {
+        origin[a] = k == 0 ? centres[k][a] : std::min(origin[a], centres[k][a]);
+        top[a] = k == 0 ? centres[k][a] : std::max(top[a], centres[k][a]);
+      }
+    double side = 2 * radius;  // (cell coordinates fit in 20 bits)
+    for (int a = 0; a < 3; ++a) side = std::max(side, (top[a] - origin[a] + 2 * radius) / double(1 << 20));
+    std::vector<std::pair<std::uint64_t, int>> pairs;  // (cell key, task)
+    for (std::size_t k = 0; k < tasks_; ++k) {
+      std::array<std::int64_t, 3> lo{}, hi{};
+      for (int a = 0; a < 3; ++a) {
+        lo[static_cast<std::size_t>(a)] = cell(centres[k][a] - radius - origin[a], side);
+        hi[static_cast<std::size_t>(a)] = cell(centres[k][a] + radius - origin[a], side);
+      }
+      for (auto x = lo[0]; x <= hi[0]; ++x)
+        for (auto y = lo[1]; y <= hi[1]; ++y)
+          for (auto z = lo[2]; z <= hi[2]; ++z) pairs.emplace_back(key(x, y, z), static_cast<int>(k));
+    }
+    std::sort(pairs.begin(), pairs.end());
+    // Per cell its tasks in ascending order (the queue a task must head in every cell of its own to start), and
+    // per task its cells.
+    std::vector<int> count(tasks_ + 1, 0);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (i == 0 || pairs[i].first != pairs[i - 1].first) queue_begin_.push_back(static_cast<int>(i));
+      queue_.push_back(pairs[i].second);
+      ++count[static_cast<std::size_t>(pairs[i].second) + 1];
+    }
+    queue_begin_.push_back(static_cast<int>(pairs.size()));
+    for (std::size_t k = 0; k < tasks_; ++k) count[k + 1] += count[k];
+    cell_begin_ = count;
+    cells_.resize(pairs.size());
+    std::vector<int> fill(count.begin(), count.end() - 1);
+    for (std::size_t c = 0; c + 1 < queue_begin_.size(); ++c)
+      for (int i = queue_begin_[c]; i < queue_begin_[c + 1]; ++i)
+        cells_[static_cast<std::size_t>(fill[static_cast<std::size_t>(queue_[static_cast<std::size_t>(i)])]++)] =
+            static_cast<int>(c);
+  }
+
+  // Runs run(k, thread) for every task k, on every thread.
+  void run(const std::function<void(std::size_t, int)>& run) {
+    if (tasks_ == 0) return;
+    std::vector<int> head(queue_begin_.begin(), queue_begin_.end() - 1);  // the first unfinished task of each cell
+    std::vector<int> heading(tasks_, 0);  // the cells a task heads
+    std::priority_queue<int, std::vector<int>, std::greater<int>> ready;
+    for (std::size_t c = 0; c < head.size(); ++c) ++heading[static_cast<std::size_t>(queue_[static_cast<std::size_t>(head[c])])];
+    for (std::size_t k = 0; k < tasks_; ++k)
+      if (heading[k] == cell_begin_[k + 1] - cell_begin_[k]) ready.push(static_cast<int>(k));
+    std::size_t finished = 0;
+    std::mutex mutex;
+    std::condition_variable wake;
+#pragma omp parallel
+    {
+      int thread = 0;
+#ifdef _OPENMP
+      thread = omp_get_thread_num();
+#endif
+      // A thread that finishes a task takes the next ready one itself; a sleeping thread is woken only for a second
+      // ready task (most tasks take a microsecond: a wake-up per task cost more than the tasks).
+      std::unique_lock<std::mutex> lock(mutex);
+      for (;;) {
+        wake.wait(lock, [&] { return !ready.empty() || finished == tasks_; });
+        if (ready.empty()) break;  // every task finished
+        const int k = ready.top();
+        ready.pop();
+        if (!ready.empty()) wake.notify_one();
+        lock.unlock();
+        run(static_cast<std::size_t>(k), thread);
+        lock.lock();
+        ++finished;
+        for (int j = cell_begin_[static_cast<std::size_t>(k)]; j < cell_begin_[static_cast<std::size_t>(k) + 1]; ++j) {
+          const auto c = static_cast<std::size_t>(cells_[static_cast<std::size_t>(j)]);
+          if (++head[c] == queue_begin_[c + 1]) continue;
+          const auto next = static_cast<std::size_t>(queue_[static_cast<std::size_t>(head[c])]);
+          if (++heading[next] == cell_begin_[next + 1] - cell_begin_[next]) ready.push(static_cast<int>(next));
+        }
+        if (finished == tasks_) wake.notify_all();
+      }
+    }
+  }
+
+ private:
+  static std::int64_t cell(double x, double side) { return static_cast<std::int64_t>(std::floor(x / side)) + 1; }
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) | static_cast<std::uint64_t>(z);
+  }
+
+  std::size_t tasks_;
+  std::vector<int> queue_begin_, queue_;  // per cell (CSR): its tasks, ascending
+  std::vector<int> cell_begin_, cells_;   // per task (CSR): its cells
+};
+
+}  // namespace carbonmesh
