@@ -72,7 +72,8 @@ class OrderedSchedule {
     std::vector<int> head(queue_begin_.begin(), queue_begin_.end() - 1);  // the first unfinished task of each cell
     std::vector<int> heading(tasks_, 0);  // the cells a task heads
     std::priority_queue<int, std::vector<int>, std::greater<int>> ready;
-    for (std::size_t c = 0; c < head.size(); ++c) ++heading[static_cast<std::size_t>(queue_[static_cast<std::size_t>(head[c])])];
+    for (std::size_t c = 0; c < head.size(); ++c)
+      ++heading[static_cast<std::size_t>(queue_[static_cast<std::size_t>(head[c])])];
     for (std::size_t k = 0; k < tasks_; ++k)
       if (heading[k] == cell_begin_[k + 1] - cell_begin_[k]) ready.push(static_cast<int>(k));
     std::size_t finished = 0;
@@ -111,7 +112,8 @@ class OrderedSchedule {
  private:
   static std::int64_t cell(double x, double side) { return static_cast<std::int64_t>(std::floor(x / side)) + 1; }
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
-    return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) | static_cast<std::uint64_t>(z);
+    const auto u = [](std::int64_t c) { return static_cast<std::uint64_t>(c); };
+    return (u(x) << 42) | (u(y) << 21) | u(z);
   }
 
   std::size_t tasks_;
