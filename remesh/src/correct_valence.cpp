@@ -427,7 +427,7 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
     // of where it is here, so the `reach` rings a chain reads lie within `radius` of its first edge's midpoint here
     // (its centre); it writes within `reach` - 2 rings. A chain B whose centre is farther than 2 `radius` from a
     // running chain A's reaches none of A's vertices: a path from B's first edge into A's rings meets first a vertex
-    // of their outer two, which A neither moves nor reconnects and which lies within `radius` of A's centre, so
+    // of their outer ring, which A neither moves nor reconnects and which lies within `radius` of A's centre, so
     // beyond B's reach. The chains are taken by colour of cells wider than 2 `radius` (8 colours, each cell's chains
     // in edge order), and the chains of cells of one colour run side by side. The outputs follow the cells: those of
     // side 2 (reach + 5) longest are the ones measured in docs/benchmarks.md (with side 2 radius bunny's farthest
