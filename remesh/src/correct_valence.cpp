@@ -8,10 +8,6 @@
 #include <utility>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <spdlog/spdlog.h>
 
 #include "carbonmesh/remesh/metrics.hpp"
@@ -19,6 +15,7 @@
 #include "ordered_schedule.hpp"
 #include "per_element.hpp"
 #include "remesh_geometry.hpp"
+#include "threads.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -326,14 +323,6 @@ class Flipper {
   std::vector<TriMesh::EdgeHandle> chain_;
   std::vector<FlipQuad> chain_quads_;
 };
-
-int max_threads() {
-#ifdef _OPENMP
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
 
 }  // namespace
 

@@ -13,11 +13,8 @@
 #include <utility>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "carbonmesh/remesh/mesh.hpp"
+#include "threads.hpp"
 
 namespace carbonmesh {
 
@@ -81,10 +78,7 @@ class OrderedSchedule {
     std::condition_variable wake;
 #pragma omp parallel
     {
-      int thread = 0;
-#ifdef _OPENMP
-      thread = omp_get_thread_num();
-#endif
+      const int thread = thread_index();
       // A thread that finishes a task takes the next ready one itself; a sleeping thread is woken only for a second
       // ready task (most tasks take a microsecond: a wake-up per task cost more than the tasks).
       std::unique_lock<std::mutex> lock(mutex);

@@ -22,16 +22,13 @@
 #include <mutex>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <spdlog/spdlog.h>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
 #include "local_region.hpp"
 #include "remesh_geometry.hpp"
+#include "threads.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -130,22 +127,6 @@ Distance local_distance(const TriMesh& mesh, const Vec3& q, TriMesh::FaceHandle 
     if (d < best.d || (d == best.d && f.idx() < best.face)) best = {d, f.idx()};
   }
   return best;
-}
-
-int max_threads() {
-#ifdef _OPENMP
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-
-int thread_index() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
 }
 
 // What every move of a round reads and writes: the mesh, the input points' distances as measured at the start of
