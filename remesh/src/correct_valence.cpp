@@ -421,23 +421,13 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
     // in edge order), and the chains of cells of one colour run side by side. The outputs follow the cells: those of
     // side 2 (reach + 5) longest are the ones measured in docs/benchmarks.md (with side 2 radius bunny's farthest
     // input vertex went 0.60 -> 0.77: the triangulation at its base rim follows the order of the flips).
-    const std::vector<double> lengths =
-        per_element(mesh.n_edges(), [&](int i) { return geometry::edge_length(mesh, TriMesh::EdgeHandle(i)); });
-    double longest = emax;
-    for (double l : lengths) longest = std::max(longest, l);
+    const double longest = std::max(emax, edge_stats(mesh).max);
     std::vector<Vec3> anchor(nv);
     for (std::size_t v = 0; v < nv; ++v) anchor[v] = mesh.point(TriMesh::VertexHandle(static_cast<int>(v)));
     context.anchor = &anchor;
     context.max_drift = longest;
     const double radius = (reach + 2) * longest;  // (reach + 1.5: the first edge's ends may have moved)
     const double side = 2 * (reach + 5) * longest;
-    std::vector<Vec3> centres(zero.size());
-    Vec3 origin(0, 0, 0);
-    for (std::size_t k = 0; k < zero.size(); ++k) {
-      const auto h = mesh.halfedge_handle(TriMesh::EdgeHandle(zero[k]), 0);
-      centres[k] = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
-      for (int a = 0; a < 3; ++a) origin[a] = k == 0 ? centres[k][a] : std::min(origin[a], centres[k][a]);
-    }
     struct Start {
       int colour;
       std::array<long, 3> cell;
@@ -445,18 +435,23 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
       Vec3 centre;
     };
     std::vector<Start> starts;
-    for (std::size_t k = 0; k < zero.size(); ++k) {
-      Start s{0, {}, zero[k], centres[k]};
+    Vec3 origin(0, 0, 0);
+    for (const int edge : zero) {
+      const auto h = mesh.halfedge_handle(TriMesh::EdgeHandle(edge), 0);
+      const Vec3 centre = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+      for (int a = 0; a < 3; ++a) origin[a] = starts.empty() ? centre[a] : std::min(origin[a], centre[a]);
+      starts.push_back({0, {}, edge, centre});
+    }
+    for (Start& s : starts)
       for (int a = 0; a < 3; ++a) {
-        s.cell[static_cast<std::size_t>(a)] = static_cast<long>(std::floor((centres[k][a] - origin[a]) / side));
+        s.cell[static_cast<std::size_t>(a)] = static_cast<long>(std::floor((s.centre[a] - origin[a]) / side));
         s.colour = 2 * s.colour + static_cast<int>(s.cell[static_cast<std::size_t>(a)] & 1);
       }
-      starts.push_back(s);
-    }
     std::sort(starts.begin(), starts.end(), [](const Start& x, const Start& y) {
       return std::tie(x.colour, x.cell, x.edge) < std::tie(y.colour, y.cell, y.edge);
     });
-    for (std::size_t k = 0; k < starts.size(); ++k) centres[k] = starts[k].centre;
+    std::vector<Vec3> centres;
+    for (const Start& s : starts) centres.push_back(s.centre);
     OrderedSchedule(centres, radius).run([&](std::size_t k, int thread) {
       flippers[static_cast<std::size_t>(thread)].chain_from(TriMesh::EdgeHandle(starts[k].edge));
     });
