@@ -1,7 +1,6 @@
 #include "carbonmesh/simulations/lammps_run.hpp"
 
 #include <fmt/format.h>
-#include <lammps/library.h>
 #include <spdlog/spdlog.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,6 +16,7 @@
 
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/simulations/md_deck.hpp"
+#include "lammps_library.hpp"
 
 namespace carbonmesh {
 namespace fs = std::filesystem;
@@ -54,47 +54,52 @@ int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
   setenv("OMP_NUM_THREADS", "1", 1);
   const std::string log = (s.work_dir / "log.lammps").string();
   const char* args[] = {"carbonmesh", "-log", log.c_str(), "-screen", "none", "-nocite"};
-  void* lmp = lammps_open_no_mpi(6, const_cast<char**>(args), nullptr);
-  int code = 0;
-  if (!lmp) {
-    out["error"] = "liblammps could not be opened";
-    code = 1;
-  } else {
-    out["version"] = lammps_version(lmp);
+  LammpsLibrary lammps;
+  void* lmp = nullptr;
+  try {
+    lammps = load_lammps_library();
+    lmp = lammps.open_no_mpi(6, const_cast<char**>(args), nullptr);
+    if (!lmp) out["error"] = "liblammps could not be opened";
+  } catch (const std::exception& e) {
+    out["error"] = e.what();
+  }
+  int code = lmp ? 0 : 1;
+  if (lmp) {
+    out["version"] = lammps.version(lmp);
     const auto start = Clock::now();
     std::optional<Clock::time_point> md_start;
     for (const auto& command : s.commands) {
-      lammps_command(lmp, command.c_str());
-      if (lammps_has_error(lmp)) {
+      lammps.command(lmp, command.c_str());
+      if (lammps.has_error(lmp)) {
         char buffer[1024] = {0};
-        lammps_get_last_error_message(lmp, buffer, sizeof buffer);
+        lammps.get_last_error_message(lmp, buffer, sizeof buffer);
         out["error"] = fmt::format("LAMMPS: {} (command: {})", buffer, command);
         code = 1;
         break;
       }
       if (starts_with(command, "minimize")) {
-        out["pe_minimized"] = lammps_get_thermo(lmp, "pe");
-        spdlog::info("minimised: pe {:.4f} eV/atom", s.atoms ? lammps_get_thermo(lmp, "pe") / s.atoms : 0.0);
+        out["pe_minimized"] = lammps.get_thermo(lmp, "pe");
+        spdlog::info("minimised: pe {:.4f} eV/atom", s.atoms ? lammps.get_thermo(lmp, "pe") / s.atoms : 0.0);
         md_start = Clock::now();
       } else if (starts_with(command, "run")) {
-        log_progress(s, std::lround(lammps_get_thermo(lmp, "step")), lammps_get_thermo(lmp, "temp"),
-                     lammps_get_thermo(lmp, "pe"));
-        out["pe_final"] = lammps_get_thermo(lmp, "pe");
-        out["temperature_final"] = lammps_get_thermo(lmp, "temp");
-        out["steps"] = std::lround(lammps_get_thermo(lmp, "step"));
+        log_progress(s, std::lround(lammps.get_thermo(lmp, "step")), lammps.get_thermo(lmp, "temp"),
+                     lammps.get_thermo(lmp, "pe"));
+        out["pe_final"] = lammps.get_thermo(lmp, "pe");
+        out["temperature_final"] = lammps.get_thermo(lmp, "temp");
+        out["steps"] = std::lround(lammps.get_thermo(lmp, "step"));
         if (md_start) out["md_seconds"] = since(*md_start);
       }
     }
     if (code == 0) {
-      const auto n = static_cast<std::size_t>(lammps_get_natoms(lmp));
+      const auto n = static_cast<std::size_t>(lammps.get_natoms(lmp));
       std::vector<double> x(3 * n);
-      lammps_gather_atoms(lmp, const_cast<char*>("x"), 1, 3, x.data());  // ordered by atom id 1..N
+      lammps.gather_atoms(lmp, const_cast<char*>("x"), 1, 3, x.data());  // ordered by atom id 1..N
       out["x"] = x;
     }
     out["seconds"] = since(start);
-    lammps_close(lmp);
+    lammps.close(lmp);
   }
-  lammps_mpi_finalize();
+  if (lammps.mpi_finalize) lammps.mpi_finalize();
   std::ofstream f(result_file);
   f << out.dump();
   return f ? code : 1;

@@ -4,7 +4,8 @@
 //    lammps_gather_atoms, lammps_close). The Debian library is built without LAMMPS_EXCEPTIONS, so a LAMMPS
 //    error ends the process with exit(1) instead of setting lammps_has_error; the library therefore runs in a
 //    forked child of the calling process, which reports back through a JSON file. lammps_has_error is still
-//    checked after every command (a library built with exceptions reports through it).
+//    checked after every command (a library built with exceptions reports through it). The child loads the
+//    library at run time (src/lammps_library.hpp); carbonmesh is not linked with it.
 //  - np > 1: `mpirun [--allow-run-as-root] --oversubscribe -np N lmp -in in.simulate` in the work folder.
 // Either way a LAMMPS error is an InputError of one line (the ERROR line of log.lammps), never a crash.
 #include <filesystem>
