@@ -1,11 +1,13 @@
-// carbonmesh simulate: Kabsch alignment, the stability rule, the MD deck, and short REBO2 runs of a C80
-// fullerene through liblammps (in-process) and mpirun, plus the CLI's error for a missing potential.
+// carbonmesh simulate: Kabsch alignment, the stability rule, the MD deck, the run-time loading of liblammps, and
+// short REBO2 runs of a C80 fullerene through liblammps (in-process) and mpirun, plus the CLI's error for a missing
+// potential.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +22,7 @@
 #include "carbonmesh/simulations/md_deck.hpp"
 #include "carbonmesh/simulations/simulate.hpp"
 #include "carbonmesh/simulations/stability.hpp"
+#include "lammps_library.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -137,6 +140,48 @@ TEST(MdDeck, ThermoCsvSegmentsAndMarkers) {
 }
 
 bool lmp_available() { return !find_potential().empty(); }
+
+TEST(LammpsLibrary, LoadsEveryFunctionOfTheLibraryTheBuildFound) {
+  const LammpsLibrary l = load_lammps_library();
+  EXPECT_NE(l.open_no_mpi, nullptr);
+  EXPECT_NE(l.close, nullptr);
+  EXPECT_NE(l.mpi_finalize, nullptr);
+  EXPECT_NE(l.version, nullptr);
+  EXPECT_NE(l.command, nullptr);
+  EXPECT_NE(l.has_error, nullptr);
+  EXPECT_NE(l.get_last_error_message, nullptr);
+  EXPECT_NE(l.get_thermo, nullptr);
+  EXPECT_NE(l.get_natoms, nullptr);
+  EXPECT_NE(l.gather_atoms, nullptr);
+}
+
+TEST(LammpsLibrary, AMissingFileOrAnotherLibraryIsAnErrorNamingIt) {
+  try {
+    load_lammps_library("liblammps-not-installed.so.0");
+    FAIL() << "no error for a missing library";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("liblammps-not-installed.so.0"), std::string::npos) << e.what();
+  }
+  try {
+    load_lammps_library("libm.so.6");  // loads, but is not LAMMPS
+    FAIL() << "no error for a library without the LAMMPS functions";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("libm.so.6 has no lammps_open_no_mpi"), std::string::npos) << e.what();
+  }
+}
+
+// The other commands do not load LAMMPS (and its MPI, Python, curl, ...) at start: the program is not linked with it.
+TEST(LammpsLibrary, TheCarbonmeshProgramIsNotLinkedWithLiblammps) {
+  const std::string command = std::string("ldd '") + CARBONMESH_CLI + "' 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
+  ASSERT_EQ(::pclose(pipe), 0) << out;
+  EXPECT_NE(out.find("libOpenMeshCore"), std::string::npos) << out;  // ldd did list the libraries
+  EXPECT_EQ(out.find("liblammps"), std::string::npos) << out;
+}
 
 TEST(Simulate, C80ShortRunInProcessIsStable) {
   if (!lmp_available()) GTEST_SKIP() << "CH.rebo not found (Debian package lammps-data)";

@@ -23,9 +23,12 @@ struct LammpsLibrary {
   decltype(&::lammps_gather_atoms) gather_atoms = nullptr;
 };
 
-// Loads the LAMMPS shared library the build found (its soname, searched as the dynamic linker searches) and
-// every function above; throws std::runtime_error naming the library and what is missing. The library stays
-// loaded for the rest of the process.
-LammpsLibrary load_lammps_library();
+// The LAMMPS shared library the build found: its soname (liblammps.so.0 on Debian), searched as the dynamic linker
+// searches.
+const char* lammps_library_file();
+
+// Loads `file` and every function above; throws std::runtime_error naming the file and what is missing. The
+// library stays loaded for the rest of the process.
+LammpsLibrary load_lammps_library(const std::string& file = lammps_library_file());
 
 }  // namespace carbonmesh
