@@ -234,12 +234,19 @@ TEST(Simulate, MissingPotentialAndBadPotentialAreInputErrors) {
   EXPECT_THROW(simulate(s), InputError);
   std::ofstream(dir / "bad.rebo") << "not a potential\n";
   s.potential = dir / "bad.rebo";
+  testing::internal::CaptureStderr();  // (the forked LAMMPS child writes to the same stderr)
   try {
     simulate(s);
     ADD_FAILURE() << "a broken potential file must fail";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("LAMMPS run failed"), std::string::npos) << e.what();
+    // One line naming the command that failed (the library throws a C++ exception on this file).
+    const std::string what = e.what();
+    EXPECT_NE(what.find("LAMMPS run failed"), std::string::npos) << what;
+    EXPECT_NE(what.find("pair_coeff"), std::string::npos) << what;
+    EXPECT_NE(what.find("bad.rebo"), std::string::npos) << what;
   }
+  const std::string stderr_text = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(stderr_text.find("LAMMPS child"), std::string::npos) << stderr_text;  // no second error line
   s.structure_dir = dir / "nothing";
   EXPECT_THROW(simulate(s), InputError);
   fs::remove_all(dir);

@@ -68,8 +68,18 @@ int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
     out["version"] = lammps.version(lmp);
     const auto start = Clock::now();
     std::optional<Clock::time_point> md_start;
+    bool thrown = false;
     for (const auto& command : s.commands) {
-      lammps.command(lmp, command.c_str());
+      try {
+        lammps.command(lmp, command.c_str());
+      } catch (const std::exception& e) {
+        // A C++ exception out of the C interface: the Debian library (20220106) throws std::logic_error ("basic_string:
+        // construction from null") on a REBO file that is not one. The instance is not closed after it.
+        out["error"] = fmt::format("LAMMPS: {} (command: {})", e.what(), command);
+        code = 1;
+        thrown = true;
+        break;
+      }
       if (lammps.has_error(lmp)) {
         char buffer[1024] = {0};
         lammps.get_last_error_message(lmp, buffer, sizeof buffer);
@@ -97,7 +107,7 @@ int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
       out["x"] = x;
     }
     out["seconds"] = since(start);
-    lammps.close(lmp);
+    if (!thrown) lammps.close(lmp);
   }
   if (lammps.mpi_finalize) lammps.mpi_finalize();
   std::ofstream f(result_file);
