@@ -70,20 +70,22 @@ int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
     std::optional<Clock::time_point> md_start;
     bool thrown = false;
     for (const auto& command : s.commands) {
+      std::string error;
       try {
         lammps.command(lmp, command.c_str());
       } catch (const std::exception& e) {
         // A C++ exception out of the C interface: the Debian library (20220106) throws std::logic_error ("basic_string:
         // construction from null") on a REBO file that is not one. The instance is not closed after it.
-        out["error"] = fmt::format("LAMMPS: {} (command: {})", e.what(), command);
-        code = 1;
+        error = *e.what() ? e.what() : "C++ exception";
         thrown = true;
-        break;
       }
-      if (lammps.has_error(lmp)) {
+      if (!thrown && lammps.has_error(lmp)) {
         char buffer[1024] = {0};
         lammps.get_last_error_message(lmp, buffer, sizeof buffer);
-        out["error"] = fmt::format("LAMMPS: {} (command: {})", buffer, command);
+        error = buffer[0] ? buffer : "unknown error";
+      }
+      if (!error.empty()) {
+        out["error"] = fmt::format("LAMMPS: {} (command: {})", error, command);
         code = 1;
         break;
       }
