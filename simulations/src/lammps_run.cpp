@@ -46,7 +46,8 @@ void log_progress(const LammpsRunSettings& s, long step, double temp, double pe)
 
 // ---- in-process (liblammps in a forked child) ------------------------------------------------------------
 
-// Runs in the child: every command through the library, results to `result_file`. Returns the exit code.
+// Runs in the child: every command through the library, results to `result_file` (with "error" when one failed).
+// Returns the exit code.
 int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
   nlohmann::json out;
   // One OpenMP thread (LAMMPS reads this when it opens): a forked child must not start OpenMP thread teams of
@@ -63,7 +64,6 @@ int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
   } catch (const std::exception& e) {
     out["error"] = e.what();
   }
-  int code = lmp ? 0 : 1;
   if (lmp) {
     out["version"] = lammps.version(lmp);
     const auto start = Clock::now();
@@ -86,7 +86,6 @@ int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
       }
       if (!error.empty()) {
         out["error"] = fmt::format("LAMMPS: {} (command: {})", error, command);
-        code = 1;
         break;
       }
       if (starts_with(command, "minimize")) {
@@ -102,7 +101,7 @@ int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
         if (md_start) out["md_seconds"] = since(*md_start);
       }
     }
-    if (code == 0) {
+    if (!out.contains("error")) {
       const auto n = static_cast<std::size_t>(lammps.get_natoms(lmp));
       std::vector<double> x(3 * n);
       lammps.gather_atoms(lmp, const_cast<char*>("x"), 1, 3, x.data());  // ordered by atom id 1..N
@@ -114,7 +113,7 @@ int child_run(const LammpsRunSettings& s, const fs::path& result_file) {
   if (lammps.mpi_finalize) lammps.mpi_finalize();
   std::ofstream f(result_file);
   f << out.dump();
-  return f ? code : 1;
+  return f && !out.contains("error") ? 0 : 1;
 }
 
 LammpsRunResult run_in_process(const LammpsRunSettings& s) {
