@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -203,6 +204,47 @@ TEST(ProjectionTarget, BisectsLongEdgesSoThatTheFaceUnderAPointIsACandidate) {
   // A target without longer edges is used as it is: the same projections.
   const Vec3 on_patch(47.3, 28.6, 3.4);
   EXPECT_EQ(ProjectionTarget(target, 200.0).project(on_patch, {}), ProjectionTarget(target).project(on_patch, {}));
+}
+
+// The nearest target vertices kept between projections (NearestTargetVertices) give the projection of a fresh
+// search, bit for bit, for points moved a little (the kept ones used) or far (searched again), also with an
+// entry kept for another point, and on a lattice whose vertices are at equal distances.
+TEST(ProjectionTarget, KeptNearestVerticesGiveTheSameProjectionAsASearch) {
+  TriMesh lattice;
+  std::vector<std::vector<TriMesh::VertexHandle>> grid(16);
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) grid[static_cast<std::size_t>(i)].push_back(lattice.add_vertex(Vec3(i, j, 0)));
+  for (std::size_t i = 0; i < 15; ++i)
+    for (std::size_t j = 0; j < 15; ++j) {
+      lattice.add_face(grid[i][j], grid[i + 1][j], grid[i + 1][j + 1]);
+      lattice.add_face(grid[i][j], grid[i + 1][j + 1], grid[i][j + 1]);
+    }
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const TriMesh& surface : {torus(1.0, 2.25), lattice}) {
+    const ProjectionTarget target(surface);
+    std::size_t kept_used = 0, searched = 0;
+    NearestTargetVertices previous;  // the entry of the previous point, tried for the next one
+    for (auto v : surface.vertices()) {
+      if (v.idx() % 3 != 0) continue;
+      Vec3 p = surface.point(v) + 0.3 * Vec3(unit(random), unit(random), unit(random));
+      NearestTargetVertices kept = previous;
+      for (int step = 0; step < 12; ++step) {
+        const std::vector<Vec3> neighbors{p + Vec3(1.5, 0, 0), p + Vec3(-0.7, 1.3, 0), p + Vec3(-0.7, -1.3, 0.2)};
+        const std::array<double, 3> at = kept.at;
+        const bool had = kept.beyond >= 0;
+        EXPECT_EQ(target.project(p, neighbors, 10, &kept), target.project(p, neighbors)) << p;
+        ASSERT_GE(kept.beyond, 0.0);
+        (had && kept.at == at ? kept_used : searched) += 1;
+        // Moves from a thousandth of an edge to two edges.
+        const double length = std::pow(10.0, -3.0 + 3.3 * (0.5 + 0.5 * unit(random)));
+        p += length * Vec3(unit(random), unit(random), unit(random)).normalize();
+      }
+      previous = kept;
+    }
+    EXPECT_GT(kept_used, 100u);
+    EXPECT_GT(searched, 100u);
+  }
 }
 
 // A cube of 12 triangles (a CAD export) with side 46.72 and the interval [1.9676, 2.9514]: longest-edge bisection

@@ -100,10 +100,49 @@ ProjectionTarget::ProjectionTarget(const TriMesh& input, double max_edge) : impl
 
 ProjectionTarget::~ProjectionTarget() = default;
 
-Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors, int k) const {
-  const Impl& t = *impl_;
+namespace {
+// The k nearest target vertices of v into `ids`, nearest first: from `kept` when they hold for v
+// (NearestTargetVertices), else searched, and then kept there with the next ones.
+void nearest_vertices(const PointGrid& grid, const std::vector<Vec3>& points, const Vec3& v, std::size_t k,
+                      NearestTargetVertices* kept, std::vector<int>& ids) {
+  using Kept = NearestTargetVertices;
+  ids.clear();
+  if (k == 0) return;
   thread_local std::vector<std::pair<double, int>> nearest;
-  t.grid->nearest(v, static_cast<std::size_t>(std::max(k, 0)), nearest);
+  if (kept != nullptr && k > Kept::kKept) kept = nullptr;
+  if (kept != nullptr && kept->beyond >= 0) {
+    nearest.clear();
+    for (std::size_t j = 0; j < kept->count; ++j) {
+      const int id = kept->ids[j];
+      nearest.emplace_back(PointGrid::squared_distance(v, points[static_cast<std::size_t>(id)]), id);
+    }
+    std::sort(nearest.begin(), nearest.end(), PointGrid::before);
+    const bool all = kept->beyond == std::numeric_limits<double>::infinity();
+    if (all || nearest.size() >= k) {
+      const Vec3 at(kept->at[0], kept->at[1], kept->at[2]);
+      // With a margin far above the rounding of the squared distances.
+      if (all || std::sqrt(nearest[k - 1].first) < kept->beyond - (v - at).norm() - 1e-9 * (kept->beyond + 1)) {
+        for (std::size_t j = 0; j < std::min(k, nearest.size()); ++j) ids.push_back(nearest[j].second);
+        return;
+      }
+    }
+  }
+  grid.nearest(v, kept != nullptr ? Kept::kKept + 1 : k, nearest);
+  for (std::size_t j = 0; j < std::min(k, nearest.size()); ++j) ids.push_back(nearest[j].second);
+  if (kept == nullptr) return;
+  kept->at = {v[0], v[1], v[2]};
+  kept->count = std::min(Kept::kKept, nearest.size());
+  for (std::size_t j = 0; j < kept->count; ++j) kept->ids[j] = nearest[j].second;
+  kept->beyond = nearest.size() > Kept::kKept ? std::sqrt(nearest[Kept::kKept].first)
+                                              : std::numeric_limits<double>::infinity();
+}
+}  // namespace
+
+Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors, int k,
+                               NearestTargetVertices* kept) const {
+  const Impl& t = *impl_;
+  thread_local std::vector<int> nearest;
+  nearest_vertices(*t.grid, t.points, v, static_cast<std::size_t>(std::max(k, 0)), kept, nearest);
   // Candidate faces, each once: a per-thread stamp per target face instead of sort + unique.
   thread_local std::vector<unsigned> face_stamp;
   thread_local unsigned stamp = 0;
@@ -114,7 +153,7 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   }
   thread_local std::vector<std::pair<double, int>> bounded;  // (lower bound of |V - P|, face)
   bounded.clear();
-  for (const auto& [d2, index] : nearest) {
+  for (const int index : nearest) {
     const auto i = static_cast<std::size_t>(index);
     for (int j = t.vertex_face_begin[i]; j < t.vertex_face_begin[i + 1]; ++j) {
       const int f = t.vertex_faces[static_cast<std::size_t>(j)];
@@ -170,16 +209,14 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   return best;
 }
 
-namespace {
-constexpr const char* kProjectedProperty = "carbonmesh:projected";
-}  // namespace
-
 void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved) {
   const int n = static_cast<int>(mesh.n_vertices());
   // Where each vertex was put by the previous projection onto the same target ([3] = 1: valid). A vertex
   // still there lies on the target, and Algorithm 4 would return it in place: it is skipped.
   OpenMesh::VPropHandleT<std::array<double, 4>> last;
   if (!mesh.get_property_handle(last, kProjectedProperty)) mesh.add_property(last, kProjectedProperty);
+  OpenMesh::VPropHandleT<NearestTargetVertices> kept;
+  if (!mesh.get_property_handle(kept, kNearestTargetProperty)) mesh.add_property(kept, kNearestTargetProperty);
   std::vector<Vec3> projected(static_cast<std::size_t>(n));
   std::vector<char> changed(static_cast<std::size_t>(n), 0);
 #pragma omp parallel
@@ -194,7 +231,7 @@ void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved) 
       if (only_moved && l[3] == 1.0 && l[0] == p[0] && l[1] == p[1] && l[2] == p[2]) continue;
       neighbors.clear();
       for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
-      projected[static_cast<std::size_t>(i)] = target.project(p, neighbors);
+      projected[static_cast<std::size_t>(i)] = target.project(p, neighbors, 10, &mesh.property(kept, v));
       changed[static_cast<std::size_t>(i)] = 1;
     }
   }
@@ -210,6 +247,8 @@ void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved) 
 void forget_projection(TriMesh& mesh) {
   OpenMesh::VPropHandleT<std::array<double, 4>> last;
   if (mesh.get_property_handle(last, kProjectedProperty)) mesh.remove_property(last);
+  OpenMesh::VPropHandleT<NearestTargetVertices> kept;
+  if (mesh.get_property_handle(kept, kNearestTargetProperty)) mesh.remove_property(kept);
 }
 
 }  // namespace carbonmesh

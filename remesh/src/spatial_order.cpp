@@ -63,14 +63,18 @@ bool spatial_order(TriMesh& mesh) {
   TriMesh out;
   std::vector<int> renumber;
   if (!build_in_spatial_order(points, faces, out, renumber)) return false;  // not on a manifold mesh: old order
-  // The projection's memory of where each vertex was put (projection.cpp) moves with its vertex.
-  OpenMesh::VPropHandleT<std::array<double, 4>> last_in, last_out;
-  if (mesh.get_property_handle(last_in, "carbonmesh:projected")) {
-    out.add_property(last_out, "carbonmesh:projected");
+  // The projection's memory of where each vertex was put and of its nearest target vertices (projection.cpp)
+  // moves with its vertex.
+  auto carry = [&](auto prototype, const char* name) {
+    OpenMesh::VPropHandleT<decltype(prototype)> in, out_handle;
+    if (!mesh.get_property_handle(in, name)) return;
+    out.add_property(out_handle, name);
     for (std::size_t k = 0; k < handle.size(); ++k)
-      out.property(last_out, TriMesh::VertexHandle(renumber[k])) =
-          mesh.property(last_in, TriMesh::VertexHandle(handle[k]));
-  }
+      out.property(out_handle, TriMesh::VertexHandle(renumber[k])) =
+          mesh.property(in, TriMesh::VertexHandle(handle[k]));
+  };
+  carry(std::array<double, 4>{}, kProjectedProperty);
+  carry(NearestTargetVertices{}, kNearestTargetProperty);
   mesh = std::move(out);
   return true;
 }

@@ -25,6 +25,14 @@ class PointGrid {
     return a.first < b.first || (a.first == b.first && a.second < b.second);
   }
 
+  // The squared distance the search orders by (the same sums wherever it is compared).
+  static double squared_distance(const Vec3& q, const Vec3& p) {
+    double d = (q[0] - p[0]) * (q[0] - p[0]);
+    d += (q[1] - p[1]) * (q[1] - p[1]);
+    d += (q[2] - p[2]) * (q[2] - p[2]);
+    return d;
+  }
+
   // The points `points[id]` for the ids in `used` (ascending), cells as in CellGrid (side `cell`, at most about
   // `max_cells`). The projection uses cells of two mean edges.
   PointGrid(const std::vector<Vec3>& points, const std::vector<int>& used, double cell, double max_cells)
@@ -66,11 +74,7 @@ class PointGrid {
   }
 
   void insert(const Vec3& q, int j, std::size_t k, std::vector<std::pair<double, int>>& out) const {
-    const Vec3& p = grid_.point(j);
-    double d = (q[0] - p[0]) * (q[0] - p[0]);
-    d += (q[1] - p[1]) * (q[1] - p[1]);
-    d += (q[2] - p[2]) * (q[2] - p[2]);
-    const std::pair<double, int> entry(d, grid_.id(j));
+    const std::pair<double, int> entry(squared_distance(q, grid_.point(j)), grid_.id(j));
     if (out.size() == k) {
       if (!before(entry, out.back())) return;
     } else {

@@ -1,6 +1,7 @@
 #pragma once
 // The steps of the interval-constraining remesher (dissertation chapter 4), one free function per step.
 // remesh() in remesher.hpp chains them (Algorithm 1); they are public so that tests can check each one.
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <utility>
@@ -128,6 +129,18 @@ bool slides_on_border(const TriMesh& mesh, TriMesh::VertexHandle v);
 
 // ---- projection.cpp (section 4.5, Algorithm 4) --------------------------------------------------------
 
+// The target vertices nearest a point `at`, kept with a mesh vertex between projections. A target vertex is at
+// most |q - at| nearer to a point q than to `at`, so when the k-th nearest of the kept ones is nearer to q than
+// `beyond` - |q - at|, no other target vertex is among q's k nearest: they are taken from the kept ones, the
+// search is skipped, and the projection is the same as with it.
+struct NearestTargetVertices {
+  static constexpr std::size_t kKept = 16;  // at least k (10 in the projection steps)
+  std::array<double, 3> at{};
+  double beyond = -1;  // the distance from `at` of the nearest target vertex not kept (infinity: none); < 0: unset
+  std::array<int, kKept> ids{};
+  std::size_t count = 0;
+};
+
 // The projection mesh M_p with its spatial index (a uniform grid over its vertices, cell_grid.hpp).
 class ProjectionTarget {
  public:
@@ -140,7 +153,10 @@ class ProjectionTarget {
   ProjectionTarget& operator=(const ProjectionTarget&) = delete;
   // Algorithm 4 for one point: candidate triangles around the k nearest target vertices, scored by the
   // neighbourhood-aware distance |V-P| + sum_k ||V-V_k| - |P-V_k||.
-  Vec3 project(const Vec3& v, const std::vector<Vec3>& neighbors, int k = 10) const;
+  // With `kept` (k at most its kMax), the k nearest target vertices kept there are used if they hold for v,
+  // else searched and kept there.
+  Vec3 project(const Vec3& v, const std::vector<Vec3>& neighbors, int k = 10,
+               NearestTargetVertices* kept = nullptr) const;
 
  private:
   struct Impl;
@@ -151,6 +167,10 @@ class ProjectionTarget {
 // (they lie on the target already); the remembered positions live in a vertex property that
 // forget_projection() removes (call it when the target changes or the mesh is handed back).
 void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false);
+// The vertex properties of projection(): where each vertex was put (x, y, z, 1) and its NearestTargetVertices
+// (spatial_order() moves them with their vertices).
+inline constexpr const char* kProjectedProperty = "carbonmesh:projected";
+inline constexpr const char* kNearestTargetProperty = "carbonmesh:nearest target vertices";
 void forget_projection(TriMesh& mesh);
 
 // ---- remove_valence_defects.cpp ------------------------------------------------------------------------
