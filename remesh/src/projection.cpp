@@ -247,6 +247,10 @@ void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved) 
 void forget_projection(TriMesh& mesh) {
   OpenMesh::VPropHandleT<std::array<double, 4>> last;
   if (mesh.get_property_handle(last, kProjectedProperty)) mesh.remove_property(last);
+  forget_nearest_target_vertices(mesh);
+}
+
+void forget_nearest_target_vertices(TriMesh& mesh) {
   OpenMesh::VPropHandleT<NearestTargetVertices> kept;
   if (mesh.get_property_handle(kept, kNearestTargetProperty)) mesh.remove_property(kept);
 }

@@ -101,6 +101,7 @@ bool BestMesh::offer(const TriMesh& mesh, std::size_t troubling, double percent_
     return false;
   }
   mesh_ = mesh;
+  forget_nearest_target_vertices(mesh_);  // its memory, not needed to restore it
   troubling_ = troubling;
   percent_regular_ = percent_regular;
   return true;

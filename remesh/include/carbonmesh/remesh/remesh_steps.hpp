@@ -172,6 +172,9 @@ void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved =
 inline constexpr const char* kProjectedProperty = "carbonmesh:projected";
 inline constexpr const char* kNearestTargetProperty = "carbonmesh:nearest target vertices";
 void forget_projection(TriMesh& mesh);
+// Removes only the NearestTargetVertices of the vertices (a cache: the next projections give the same result), as
+// from a copy kept aside.
+void forget_nearest_target_vertices(TriMesh& mesh);
 
 // ---- remove_valence_defects.cpp ------------------------------------------------------------------------
 
