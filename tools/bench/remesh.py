@@ -38,22 +38,41 @@ def row(model, method, seconds, rss, s, iterations):
 
 def fastest_of(commands, repeat):
     """Runs each command `repeat` times, the commands taking turns (so that a machine slowing down or speeding up
-    between runs affects all of them alike); returns (JSON of the fastest run, largest peak RSS in MiB) for each."""
+    between runs affects all of them alike); returns (JSON of the fastest run, largest peak RSS in MiB) for each.
+    The JSON also holds "turn_seconds": the seconds of every run of the command, in the order of the turns."""
     best, peak = [None] * len(commands), [0.0] * len(commands)
+    turns = [[] for _ in commands]
     for _ in range(max(1, repeat)):
         for i, command in enumerate(commands):
             out, _, rss = timed(command)
             result = json.loads(out)
             peak[i] = max(peak[i], rss)
+            turns[i].append(result["seconds"])
             if best[i] is None or result["seconds"] < best[i]["seconds"]:
                 best[i] = result
+    for b, t in zip(best, turns):
+        b["turn_seconds"] = t
     return list(zip(best, peak))
 
 
-def ratio_line(ratios):
-    """The speed ratios carbonmesh / CGAL of a table, as one line under it."""
-    return ("Speed ratio, carbonmesh's seconds over CGAL's (fastest runs, the two methods taking turns): " +
+def turn_ratios(ours, peer):
+    """carbonmesh's seconds over CGAL's in each turn (the two runs one after the other), sorted."""
+    return sorted(a / max(b, 1e-9) for a, b in zip(ours["turn_seconds"], peer["turn_seconds"]))
+
+
+def ratio_line(ratios, turns=None):
+    """The speed ratios carbonmesh / CGAL of a table, as one line under it; with `turns` (model -> turn_ratios),
+    a second line with the median and range of the ratios within each turn (less moved by the machine's speed
+    changing between turns than the ratio of the fastest runs)."""
+    line = ("Speed ratio, carbonmesh's seconds over CGAL's (fastest runs, the two methods taking turns): " +
             "; ".join(f"{name} {r:.1f}x" for name, r in ratios) + ".")
+    if not turns:
+        return line
+    def median(v):
+        return 0.5 * (v[(len(v) - 1) // 2] + v[len(v) // 2])
+    return (line + "\n\nThe same within each turn (carbonmesh's run over CGAL's run right after it), median and "
+            "range over the turns: " +
+            "; ".join(f"{name} {median(t):.2f}x ({t[0]:.2f}-{t[-1]:.2f})" for name, t in turns.items()) + ".")
 
 
 def plot_convergence(csv_path, png_path, title):
@@ -112,7 +131,7 @@ def main():
              "| model | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "
              "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    ratios = []
+    ratios, turns = [], {}
     for model in models:
         src = os.path.join(args.models, model + ".off")
         ours, conv = os.path.join(work, model + ".off"), os.path.join(work, model + ".csv")
@@ -124,8 +143,9 @@ def main():
         plot_convergence(conv, os.path.join(img_dir, f"convergence-{model}.png"), f"{model}: long + short")
         lines.append(row(model, "CGAL", peer_result["seconds"], peer_rss, stats(cli, theirs, src, repair=True), 10))
         ratios.append((model, result["seconds"] / max(peer_result["seconds"], 1e-9)))
+        turns[model] = turn_ratios(result, peer_result)
         print(lines[-2] + "\n" + lines[-1], flush=True)
-    lines += ["", ratio_line(ratios), "",
+    lines += ["", ratio_line(ratios, turns), "",
               "Convergence curves: " + ", ".join(f"[{m}](img/convergence-{m}.png)" for m in models), ""]
     if not args.no_study and "bunny" in models:
         lines += ["### Parameter study on bunny (Table 5.1 of the dissertation: kl x weights)", "",
