@@ -247,6 +247,34 @@ TEST(ProjectionTarget, KeptNearestVerticesGiveTheSameProjectionAsASearch) {
   }
 }
 
+// projection() keeps each vertex's nearest target vertices in the mesh; onto another target, without
+// forget_projection(), it starts them over: the same result as onto that target alone.
+// The second target is the first plus a sphere around it: the first's vertices keep their indices and places, so
+// the nearest vertices kept for the first would still look valid, but the outer sphere's are nearer.
+TEST(ProjectionTarget, ProjectionOntoAnotherTargetDoesNotUseTheNearestVerticesOfTheFirst) {
+  const TriMesh first = make_icosphere({10.0, 3});
+  TriMesh second = first;
+  std::vector<TriMesh::VertexHandle> outer;
+  for (auto v : first.vertices()) outer.push_back(second.add_vertex(first.point(v) * 1.05));
+  for (auto f : first.faces()) {
+    std::vector<TriMesh::VertexHandle> corners;
+    for (auto v : first.fv_range(f)) corners.push_back(outer[static_cast<std::size_t>(v.idx())]);
+    second.add_face(corners);
+  }
+  TriMesh moved = make_icosphere({11.0, 2});
+  const ProjectionTarget onto_first(first), onto_second(second);
+  projection(onto_first, moved);
+  for (auto v : moved.vertices()) moved.set_point(v, moved.point(v) * 1.1);
+  TriMesh fresh = moved;
+  forget_projection(fresh);
+  projection(onto_second, moved);
+  projection(onto_second, fresh);
+  for (auto v : moved.vertices()) {
+    EXPECT_EQ(moved.point(v), fresh.point(v));
+    EXPECT_NEAR(moved.point(v).norm(), 10.5, 0.2);  // on the outer sphere
+  }
+}
+
 // A cube of 12 triangles (a CAD export) with side 46.72 and the interval [1.9676, 2.9514]: longest-edge bisection
 // makes each face a grid of right isosceles triangles with legs 2.065 and hypotenuses 2.92, every edge inside and
 // vertices of valence 4 and 8. The remesher used to stop there (0 iterations; at --atoms 20000, 98% of the

@@ -217,6 +217,13 @@ void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved) 
   if (!mesh.get_property_handle(last, kProjectedProperty)) mesh.add_property(last, kProjectedProperty);
   OpenMesh::VPropHandleT<NearestTargetVertices> kept;
   if (!mesh.get_property_handle(kept, kNearestTargetProperty)) mesh.add_property(kept, kNearestTargetProperty);
+  OpenMesh::MPropHandleT<const ProjectionTarget*> owner;
+  if (!mesh.get_property_handle(owner, kNearestTargetOwnerProperty))
+    mesh.add_property(owner, kNearestTargetOwnerProperty);
+  if (mesh.property(owner) != &target) {  // kept for another target, or nothing kept yet
+    for (int i = 0; i < n; ++i) mesh.property(kept, TriMesh::VertexHandle(i)).beyond = -1;
+    mesh.property(owner) = &target;
+  }
   std::vector<Vec3> projected(static_cast<std::size_t>(n));
   std::vector<char> changed(static_cast<std::size_t>(n), 0);
 #pragma omp parallel
@@ -253,6 +260,8 @@ void forget_projection(TriMesh& mesh) {
 void forget_nearest_target_vertices(TriMesh& mesh) {
   OpenMesh::VPropHandleT<NearestTargetVertices> kept;
   if (mesh.get_property_handle(kept, kNearestTargetProperty)) mesh.remove_property(kept);
+  OpenMesh::MPropHandleT<const ProjectionTarget*> owner;
+  if (mesh.get_property_handle(owner, kNearestTargetOwnerProperty)) mesh.remove_property(owner);
 }
 
 }  // namespace carbonmesh

@@ -64,7 +64,7 @@ bool spatial_order(TriMesh& mesh) {
   std::vector<int> renumber;
   if (!build_in_spatial_order(points, faces, out, renumber)) return false;  // not on a manifold mesh: old order
   // The projection's memory of where each vertex was put and of its nearest target vertices (projection.cpp)
-  // moves with its vertex.
+  // moves with its vertex (and the target those were searched on with the mesh).
   auto carry = [&](auto prototype, const char* name) {
     OpenMesh::VPropHandleT<decltype(prototype)> in, out_handle;
     if (!mesh.get_property_handle(in, name)) return;
@@ -75,6 +75,11 @@ bool spatial_order(TriMesh& mesh) {
   };
   carry(std::array<double, 4>{}, kProjectedProperty);
   carry(NearestTargetVertices{}, kNearestTargetProperty);
+  OpenMesh::MPropHandleT<const ProjectionTarget*> owner_in, owner_out;
+  if (mesh.get_property_handle(owner_in, kNearestTargetOwnerProperty)) {
+    out.add_property(owner_out, kNearestTargetOwnerProperty);
+    out.property(owner_out) = mesh.property(owner_in);
+  }
   mesh = std::move(out);
   return true;
 }

@@ -153,7 +153,7 @@ class ProjectionTarget {
   ProjectionTarget& operator=(const ProjectionTarget&) = delete;
   // Algorithm 4 for one point: candidate triangles around the k nearest target vertices, scored by the
   // neighbourhood-aware distance |V-P| + sum_k ||V-V_k| - |P-V_k||.
-  // With `kept` (k at most its kMax), the k nearest target vertices kept there are used if they hold for v,
+  // With `kept` (k at most its kKept), the k nearest target vertices kept there are used if they hold for v,
   // else searched and kept there.
   Vec3 project(const Vec3& v, const std::vector<Vec3>& neighbors, int k = 10,
                NearestTargetVertices* kept = nullptr) const;
@@ -168,9 +168,11 @@ class ProjectionTarget {
 // forget_projection() removes (call it when the target changes or the mesh is handed back).
 void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false);
 // The vertex properties of projection(): where each vertex was put (x, y, z, 1) and its NearestTargetVertices
-// (spatial_order() moves them with their vertices).
+// (spatial_order() moves them with their vertices), and the mesh property naming the target those were searched
+// on (a projection onto another target starts them over).
 inline constexpr const char* kProjectedProperty = "carbonmesh:projected";
 inline constexpr const char* kNearestTargetProperty = "carbonmesh:nearest target vertices";
+inline constexpr const char* kNearestTargetOwnerProperty = "carbonmesh:nearest target vertices, target";
 void forget_projection(TriMesh& mesh);
 // Removes only the NearestTargetVertices of the vertices (a cache: the next projections give the same result), as
 // from a copy kept aside.
