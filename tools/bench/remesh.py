@@ -11,6 +11,7 @@ import json
 import csv
 import math
 import os
+import statistics
 import sys
 import tempfile
 
@@ -68,11 +69,9 @@ def ratio_line(ratios, turns=None):
             "; ".join(f"{name} {r:.1f}x" for name, r in ratios) + ".")
     if not turns:
         return line
-    def median(v):
-        return 0.5 * (v[(len(v) - 1) // 2] + v[len(v) // 2])
     return (line + "\n\nThe same within each turn (carbonmesh's run over CGAL's run right after it), median and "
             "range over the turns: " +
-            "; ".join(f"{name} {median(t):.2f}x ({t[0]:.2f}-{t[-1]:.2f})" for name, t in turns.items()) + ".")
+            "; ".join(f"{name} {statistics.median(t):.2f}x ({t[0]:.2f}-{t[-1]:.2f})" for name, t in turns.items()) + ".")
 
 
 def plot_convergence(csv_path, png_path, title):
