@@ -151,8 +151,20 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
     std::fill(face_stamp.begin(), face_stamp.end(), 0u);
     stamp = 1;
   }
-  thread_local std::vector<std::pair<double, int>> bounded;  // (lower bound of |V - P|, face)
-  bounded.clear();
+  // Each candidate face with the squared distance of v to the centre of its bounding sphere (no square root: most
+  // faces are ruled out by comparing it with the bound below).
+  struct Candidate {
+    double centre2;
+    int face;
+  };
+  thread_local std::vector<Candidate> candidates;
+  std::size_t fan = 0;
+  for (const int index : nearest)
+    fan += static_cast<std::size_t>(t.vertex_face_begin[static_cast<std::size_t>(index) + 1] -
+                                    t.vertex_face_begin[static_cast<std::size_t>(index)]);
+  if (candidates.size() < fan) candidates.resize(fan);
+  Candidate* const listed = candidates.data();
+  std::size_t count = 0;
   for (const int index : nearest) {
     const auto i = static_cast<std::size_t>(index);
     for (int j = t.vertex_face_begin[i]; j < t.vertex_face_begin[i + 1]; ++j) {
@@ -161,8 +173,8 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
       if (mark == stamp) continue;
       mark = stamp;
       const auto& sp = t.spheres[static_cast<std::size_t>(f)];
-      const double dc = (v - Vec3(sp[0], sp[1], sp[2])).norm();
-      bounded.emplace_back(std::max(0.0, dc - sp[3]), f);
+      const double dx = v[0] - sp[0], dy = v[1] - sp[1], dz = v[2] - sp[2];
+      listed[count++] = {dx * dx + dy * dy + dz * dz, f};
     }
   }
   thread_local std::vector<double> neighbor_lengths;
@@ -175,15 +187,17 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
                                      t.points[static_cast<std::size_t>(tri[2])]);
   };
   // The winner is the candidate with the smallest score, ties to the smaller |V - P|, then the smaller face
-  // index: a strict order, so the faces may be scored in any order. A face whose distance bound exceeds the
-  // best score so far cannot win (|V - P| <= score) and is not projected onto. The face with the smallest
-  // bound goes first (it usually wins, so most others are skipped by their bound); sorting all of them cost
-  // more than the projections it saved.
+  // index: a strict order, so the faces may be scored in any order. A face whose bounding sphere lies farther than
+  // the best score so far cannot win (|V - P| <= score; the radii are rounded up far beyond the rounding of these
+  // comparisons) and is not projected onto. The face whose sphere's centre is nearest goes first (it usually wins, so
+  // most others are ruled out by their sphere); sorting all of them cost more than the projections it saved.
   Vec3 best = v;
   double best_score = std::numeric_limits<double>::infinity(), best_distance = best_score;
   int best_face = -1;
-  auto consider = [&](double lb, int f) {
-    if (lb > best_score) return;
+  auto consider = [&](const Candidate& c) {
+    const double radius = t.spheres[static_cast<std::size_t>(c.face)][3];
+    if (c.centre2 > (best_score + radius) * (best_score + radius)) return;
+    const int f = c.face;
     const Vec3 p = closest(f);
     const double distance = (v - p).norm();
     if (distance > best_score) return;
@@ -199,13 +213,15 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
       best = p;
     }
   };
-  if (bounded.empty()) return best;
+  if (count == 0) return best;
   std::size_t first = 0;
-  for (std::size_t j = 1; j < bounded.size(); ++j)
-    if (PointGrid::before(bounded[j], bounded[first])) first = j;
-  consider(bounded[first].first, bounded[first].second);
-  for (std::size_t j = 0; j < bounded.size(); ++j)
-    if (j != first) consider(bounded[j].first, bounded[j].second);
+  for (std::size_t j = 1; j < count; ++j)
+    if (listed[j].centre2 < listed[first].centre2 ||
+        (listed[j].centre2 == listed[first].centre2 && listed[j].face < listed[first].face))
+      first = j;
+  consider(listed[first]);
+  for (std::size_t j = 0; j < count; ++j)
+    if (j != first) consider(listed[j]);
   return best;
 }
 
