@@ -36,7 +36,9 @@ bool midpoint_subdivision(TriMesh& mesh) {
   // Built in spatial memory order at once (the remesher would reorder the appended midpoints anyway).
   TriMesh out;
   std::vector<int> renumber;
-  if (!build_in_spatial_order(points, faces, out, renumber)) return false;  // not on a manifold mesh
+  // Each edge is halved and each face adds three inner edges.
+  const std::size_t edges = 2 * mesh.n_edges() + 3 * mesh.n_faces();
+  if (!build_in_spatial_order(points, faces, edges, out, renumber)) return false;  // not on a manifold mesh
   mesh = std::move(out);
   return true;
 }

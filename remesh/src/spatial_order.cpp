@@ -15,10 +15,10 @@
 namespace carbonmesh {
 
 bool build_in_spatial_order(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& faces,
-                            TriMesh& out, std::vector<int>& renumber) {
+                            std::size_t edges, TriMesh& out, std::vector<int>& renumber) {
   const std::vector<int> order = morton_order(points);
   out = TriMesh();
-  out.reserve(points.size(), points.size() + faces.size(), faces.size());
+  out.reserve(points.size(), edges, faces.size());
   renumber.assign(points.size(), -1);
   for (int k : order)
     renumber[static_cast<std::size_t>(k)] = out.add_vertex(points[static_cast<std::size_t>(k)]).idx();
@@ -60,9 +60,11 @@ bool spatial_order(TriMesh& mesh) {
     for (auto w : mesh.fv_range(f)) t[static_cast<std::size_t>(k++)] = point_of[static_cast<std::size_t>(w.idx())];
     faces.push_back(t);
   }
+  std::size_t edges = 0;
+  for (auto e : mesh.edges()) edges += !mesh.status(e).deleted();
   TriMesh out;
   std::vector<int> renumber;
-  if (!build_in_spatial_order(points, faces, out, renumber)) return false;  // not on a manifold mesh: old order
+  if (!build_in_spatial_order(points, faces, edges, out, renumber)) return false;  // not on a manifold mesh: old order
   // The projection's memory of where each vertex was put and of its nearest target vertices (projection.cpp)
   // moves with its vertex (and the target those were searched on with the mesh).
   auto carry = [&](auto prototype, const char* name) {
