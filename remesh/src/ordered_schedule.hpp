@@ -30,7 +30,10 @@ class OrderedSchedule {
         origin[a] = k == 0 ? centres[k][a] : std::min(origin[a], centres[k][a]);
         top[a] = k == 0 ? centres[k][a] : std::max(top[a], centres[k][a]);
       }
-    double side = 2 * radius;  // (cell coordinates fit in 20 bits)
+    // (Cell coordinates fit in 20 bits, and side >= radius keeps them >= 0 with the + 1 of cell(): a negative one
+    // would run into the other coordinates' bits of key(). Cells of side radius or less gave regularize's chains no
+    // more parallelism on bunny and fertility, session 25.)
+    double side = 2 * radius;
     for (int a = 0; a < 3; ++a) side = std::max(side, (top[a] - origin[a] + 2 * radius) / double(1 << 20));
     std::vector<std::pair<std::uint64_t, int>> pairs;  // (cell key, task)
     for (std::size_t k = 0; k < tasks_; ++k) {
