@@ -215,10 +215,8 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   };
   if (count == 0) return best;
   std::size_t first = 0;
-  for (std::size_t j = 1; j < count; ++j)
-    if (listed[j].centre2 < listed[first].centre2 ||
-        (listed[j].centre2 == listed[first].centre2 && listed[j].face < listed[first].face))
-      first = j;
+  for (std::size_t j = 1; j < count; ++j)  // (on a tie any will do: the result does not depend on the order)
+    if (listed[j].centre2 < listed[first].centre2) first = j;
   consider(listed[first]);
   for (std::size_t j = 0; j < count; ++j)
     if (j != first) consider(listed[j]);
