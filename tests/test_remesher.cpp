@@ -350,7 +350,9 @@ TEST(ProjectionTarget, ProjectionOntoAnotherTargetDoesNotUseTheNearestVerticesOf
 // makes each face a grid of right isosceles triangles with legs 2.065 and hypotenuses 2.92, every edge inside and
 // vertices of valence 4 and 8. The remesher used to stop there (0 iterations; at --atoms 20000, 98% of the
 // triangles right-angled and 37% of the atoms strained in the dual); it now runs its loop.
-TEST(Remesher, AnIrregularMeshWithEveryEdgeInsideIsStillRemeshed) {
+// A cube of side 46.72 (12 triangles), which longest-edge bisection makes a valence-4/8 grid of right triangles
+// with every edge inside [1.9676, 2.9514].
+TriMesh bisection_cube() {
   TriMesh cube;
   std::vector<TriMesh::VertexHandle> v;
   for (int x = 0; x < 2; ++x)
@@ -359,26 +361,66 @@ TEST(Remesher, AnIrregularMeshWithEveryEdgeInsideIsStillRemeshed) {
   const int faces[12][3] = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5}, {0, 4, 5}, {0, 5, 1},
                             {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
   for (const auto& f : faces) cube.add_face(v[f[0]], v[f[1]], v[f[2]]);
+  return cube;
+}
+
+RemeshSettings bisection_cube_settings() {
   RemeshSettings settings;
   settings.emin = 1.9676;
   settings.emax = 2.9514;
-  const RemeshResult r = remesh(cube, settings);
-  EXPECT_GT(r.bisected_vertices, 0u);
-  EXPECT_GE(r.iterations, 1);
-  EXPECT_TRUE(r.converged);
-  EXPECT_TRUE(topology(cube).same_type(r.before));
-  // Triangles with an angle above 80 degrees: 98% in the bisection grid.
+  return settings;
+}
+
+// The share of triangles with an angle above 80 degrees (98% in the bisection grid).
+double right_triangle_share(const TriMesh& mesh) {
   std::size_t right = 0;
-  for (auto f : cube.faces()) {
+  for (auto f : mesh.faces()) {
     std::array<Vec3, 3> p;
     int k = 0;
-    for (auto w : cube.fv_range(f)) p[static_cast<std::size_t>(k++)] = cube.point(w);
+    for (auto w : mesh.fv_range(f)) p[static_cast<std::size_t>(k++)] = mesh.point(w);
     for (std::size_t i = 0; i < 3; ++i) {
       const Vec3 a = p[(i + 1) % 3] - p[i], b = p[(i + 2) % 3] - p[i];
       if (std::acos(OpenMesh::dot(a, b) / (a.norm() * b.norm())) > 80 * M_PI / 180) ++right;
     }
   }
-  EXPECT_LT(static_cast<double>(right), 0.1 * static_cast<double>(cube.n_faces()));
+  return static_cast<double>(right) / static_cast<double>(mesh.n_faces());
+}
+
+TEST(Remesher, AnIrregularMeshWithEveryEdgeInsideIsStillRemeshed) {
+  TriMesh cube = bisection_cube();
+  const RemeshResult r = remesh(cube, bisection_cube_settings());
+  EXPECT_GT(r.bisected_vertices, 0u);
+  EXPECT_GE(r.iterations, 1);
+  EXPECT_TRUE(r.converged);
+  EXPECT_TRUE(topology(cube).same_type(r.before));
+  EXPECT_LT(right_triangle_share(cube), 0.1);
+}
+
+// The same input with a loop stopped by the stall rule before it converges: the post-processing starts from the
+// loop's best mesh, not from the input (which no loop mesh with an edge outside would beat).
+TEST(Remesher, AStalledLoopAfterAnIrregularInputPostProcessesTheLoopsBestMesh) {
+  TriMesh cube = bisection_cube();
+  RemeshSettings settings = bisection_cube_settings();
+  settings.stall_limit = 3;
+  const RemeshResult r = remesh(cube, settings);
+  EXPECT_TRUE(r.stalled);
+  EXPECT_TRUE(r.post_processed);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT(right_triangle_share(cube), 0.1);
+}
+
+// And whatever the loop leaves, an input with every edge inside never ends with an edge outside: where the
+// post-processing of the loop's best mesh leaves some, the input is kept.
+TEST(Remesher, AnIrregularInputWithEveryEdgeInsideNeverEndsWithAnEdgeOutside) {
+  for (const int iterations : {1, 2, 3}) {
+    TriMesh cube = bisection_cube();
+    RemeshSettings settings = bisection_cube_settings();
+    settings.iterations = iterations;
+    const RemeshResult r = remesh(cube, settings);
+    EXPECT_TRUE(r.converged) << iterations;
+    const EdgeStats edges = edge_stats(cube, {settings.emin, settings.emax});
+    EXPECT_EQ(edges.long_edges + edges.short_edges, 0u) << iterations;
+  }
 }
 
 // A dense input made into a small structure: mean edge 0.3 against [2, 3]. Section 4.1's intermediate interval,

@@ -92,6 +92,9 @@ struct RemeshResult {
   // The loop stopped early: no better mesh for settings.stall_limit iterations; the best mesh goes to the
   // post-processing.
   bool stalled = false;
+  // An input with every edge inside (but irregular valences) that the loop and the post-processing left with edges
+  // outside: the input is kept (and regularized, snapped and fitted like a converged mesh).
+  bool kept_input = false;
   std::size_t bisected_vertices = 0;  // vertices added by the longest-edge bisection of an input with mean edge > 2 emax
   std::size_t long_edges = 0, short_edges = 0;
   double percent_regular = 0;
