@@ -242,9 +242,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // Such an input would be a best mesh that only a converged loop beats: the stall rule below would stop any loop
   // that is still converging after stall_limit iterations, and the post-processing would start from the input
   // again (cubes of side 44.6-47.2 for [1.9676, 2.9514]: 1 of 11 sizes). So the loop's own meshes compete
-  // for the best (the input counts as if every edge were outside), and the input is the fallback at the end.
-  const std::size_t every_edge = std::numeric_limits<std::size_t>::max();
-  BestMesh best(mesh, irregular ? every_edge : edges.long_edges + edges.short_edges,
+  // for the best (the input scores worse than any of them), and the input is the fallback at the end.
+  const std::size_t worse_than_any = std::numeric_limits<std::size_t>::max();
+  BestMesh best(mesh, irregular ? worse_than_any : edges.long_edges + edges.short_edges,
                 valence_stats(mesh).percent_regular);
   std::optional<TriMesh> restart_input;
   if (irregular) {
