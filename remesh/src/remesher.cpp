@@ -238,14 +238,15 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // A mesh with every edge inside but vertices two or more off their ideal valence (the valence-4/8 grid that the
   // bisection above makes of a cube's faces) gets one ordinary iteration anyway: flips and the low-pass filter,
   // which the interval test alone would skip. Then the loop goes on while edges are outside.
-  const bool irregular = edges.long_edges + edges.short_edges == 0 && valence_stats(mesh).percent_eval_gt1 > 0;
+  const ValenceStats start_valence = valence_stats(mesh);
+  const bool irregular = edges.long_edges + edges.short_edges == 0 && start_valence.percent_eval_gt1 > 0;
   // Such an input would be a best mesh that only a converged loop beats: the stall rule below would stop any loop
   // that is still converging after stall_limit iterations, and the post-processing would start from the input
   // again (cubes of side 44.6-47.2 for [1.9676, 2.9514]: 1 of 11 sizes). So the loop's own meshes compete
   // for the best (the input scores worse than any of them), and the input is the fallback at the end.
   const std::size_t worse_than_any = std::numeric_limits<std::size_t>::max();
   BestMesh best(mesh, irregular ? worse_than_any : edges.long_edges + edges.short_edges,
-                valence_stats(mesh).percent_regular);
+                start_valence.percent_regular);
   std::optional<TriMesh> restart_input;
   if (irregular) {
     restart_input = mesh;
@@ -392,15 +393,17 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // Vertices of valence <= 4 that flips cannot repair are collapsed where that adds no edge outside (also on a
   // mesh that did not converge: a valence-4 vertex is a 4-ring in the carbon structure).
   spdlog::debug("valence defects: {} removed", remove_valence_defects(mesh, *projection_target, s.kn, s.emin, s.emax));
-  if (const EdgeStats e = edge_stats(mesh, interval); restart_input && e.long_edges + e.short_edges > 0) {
-    spdlog::info("remesh: {} long and short edges left where the input had none: kept the input",
-                 e.long_edges + e.short_edges);
+  const EdgeStats after_loop = edge_stats(mesh, interval);
+  std::size_t outside = after_loop.long_edges + after_loop.short_edges;
+  if (restart_input && outside > 0) {
+    spdlog::info("remesh: {} long and short edges left where the input had none: kept the input", outside);
     mesh = *restart_input;
     result.kept_input = true;
+    outside = 0;  // the input has every edge inside
   }
   // Once every edge is inside: valence optimisation that keeps them inside (regularize in correct_valence.cpp),
   // then the feature snap and the surface fit, which keep them inside too.
-  if (const EdgeStats e = edge_stats(mesh, interval); e.long_edges + e.short_edges == 0) {
+  if (outside == 0) {
     spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
     // Vertices onto the input points the surface cuts off, before the fit, which then keeps them there.
     SnapResult snap;
