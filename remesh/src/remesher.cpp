@@ -393,7 +393,13 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // Vertices of valence <= 4 that flips cannot repair are collapsed where that adds no edge outside (also on a
   // mesh that did not converge: a valence-4 vertex is a 4-ring in the carbon structure).
   spdlog::debug("valence defects: {} removed", remove_valence_defects(mesh, *projection_target, s.kn, s.emin, s.emax));
-  const EdgeStats after_loop = edge_stats(mesh, interval);
+  EdgeStats after_loop = edge_stats(mesh, interval);
+  if (after_loop.long_edges + after_loop.short_edges > 0) {
+    // Edges neither the optimizer nor the stellar operations reach (a border vertex of valence 3 on a round border).
+    result.stuck_edges_cleared = clear_stuck_edges(mesh, *projection_target, s.kn, s.emin, s.emax);
+    spdlog::debug("stuck edges: {} changes kept", result.stuck_edges_cleared);
+    if (result.stuck_edges_cleared > 0) after_loop = edge_stats(mesh, interval);
+  }
   std::size_t outside = after_loop.long_edges + after_loop.short_edges;
   if (restart_input && outside > 0) {
     spdlog::info("remesh: {} long and short edges left where the input had none: kept the input", outside);
@@ -528,6 +534,7 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"vanished", r.vanished},
           {"stalled", r.stalled},
           {"kept_input", r.kept_input},
+          {"stuck_edges_cleared", r.stuck_edges_cleared},
           {"bisected_vertices", r.bisected_vertices},
           {"long", r.long_edges},
           {"short", r.short_edges},

@@ -187,6 +187,14 @@ void forget_nearest_target_vertices(TriMesh& mesh);
 std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin,
                                    double emax);
 
+// ---- clear_stuck_edges.cpp ------------------------------------------------------------------------------
+
+// Each edge outside [emin, emax] gets local changes of connectivity in turn (a flip of one of the four edges of its
+// triangles or of itself, then its collapse), each followed by a relaxation of the free vertices around it (Error_b
+// with the interval hinge, projected onto `target`) and kept only when the region then has fewer edges outside or
+// faces under 3 degrees and no face turned over; otherwise undone. Returns the changes kept.
+std::size_t clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax);
+
 // ---- snap_to_features.cpp ----------------------------------------------------------------------------------
 
 struct SnapResult {

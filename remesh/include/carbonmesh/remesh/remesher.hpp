@@ -95,6 +95,8 @@ struct RemeshResult {
   // An input with every edge inside (but irregular valences) that the loop and the post-processing left with edges
   // outside: the input is kept (and regularized, snapped and fitted like a converged mesh).
   bool kept_input = false;
+  // Local changes of connectivity kept by clear_stuck_edges after the loop (edges it left outside; 0 when none were).
+  std::size_t stuck_edges_cleared = 0;
   std::size_t bisected_vertices = 0;  // vertices added by the longest-edge bisection of an input with mean edge > 2 emax
   std::size_t long_edges = 0, short_edges = 0;
   double percent_regular = 0;
