@@ -423,6 +423,40 @@ TEST(Remesher, AnIrregularInputWithEveryEdgeInsideNeverEndsWithAnEdgeOutside) {
   }
 }
 
+// Section 4.1's stellar step on a mesh whose edges are all long but shorter than 2 emin: splitting them all divided
+// each face into four with short edges, which the next iterations collapsed again. An interior edge next to a split
+// of the same pass waits: each face is split at most once, and every long edge left is next to a split.
+TEST(Remesher, StellarOperationsSplitNoEdgeNextToASplitWhenItsHalvesWouldBeShort) {
+  TriMesh mesh = sphere(3, 2.1);  // edges about 1.9-2.3 against [1.2, 1.8]: long, shorter than 2.4
+  const EdgeStats before = edge_stats(mesh, {1.2, 1.8});
+  ASSERT_EQ(before.long_edges, mesh.n_edges());
+  ASSERT_LT(before.max, 2.4);
+  const std::size_t faces = mesh.n_faces();
+  const int first_new = static_cast<int>(mesh.n_vertices());
+  const StellarResult r = stellar_operations(mesh, 1.2, 1.8, 1.5);
+  EXPECT_EQ(r.collapses, 0u);
+  EXPECT_LE(2 * r.splits, faces);      // each split divides two faces, each face at most once
+  EXPECT_GE(5 * r.splits, 2 * faces);  // and most faces are split (a maximal choice)
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const auto a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
+    EXPECT_FALSE(a.idx() >= first_new && b.idx() >= first_new) << "two new vertices adjacent";
+    // An edge of the input left long has a new vertex opposite it (a new edge from a split vertex to the vertex
+    // opposite may be long too: the triangles' heights are about 1.8).
+    if (a.idx() >= first_new || b.idx() >= first_new || mesh.calc_edge_length(e) <= 1.8) continue;
+    bool next_to_split = false;
+    for (int side = 0; side < 2; ++side)
+      next_to_split = next_to_split ||
+                      mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.halfedge_handle(e, side))).idx() >= first_new;
+    EXPECT_TRUE(next_to_split);
+  }
+  // Edges of 2 emin or more split into halves inside or long: all of them are split.
+  TriMesh coarse = sphere(3, 3.0);
+  ASSERT_GT(edge_stats(coarse, {1.2, 1.8}).min, 2.4);
+  const std::size_t edges = coarse.n_edges();
+  EXPECT_EQ(stellar_operations(coarse, 1.2, 1.8, 1.5).splits, edges);
+}
+
 // A flat annulus (radii 1 and 20) as a 60 x 30 quad grid of triangles, scaled by `scale`: the input of
 // docs/reliability.md's annulus row, which `build` scales to the atoms asked.
 TriMesh annulus(double scale) {

@@ -52,6 +52,24 @@ bool link_condition(const TriMesh& mesh, HH h) {
   return true;
 }
 
+// Whether a triangle of `e` has, opposite it, an interior vertex added in this pass (index >= first_new): that
+// triangle was divided by a split already. A vertex added on a border edge does not count: it has valence 3 (ideal 4)
+// until an edge of its triangle is split too, and a border vertex of valence 3 leaves that triangle almost no room.
+bool touches_a_border(const TriMesh& mesh, TriMesh::EdgeHandle e) {
+  const HH h = mesh.halfedge_handle(e, 0);
+  return mesh.is_boundary(mesh.from_vertex_handle(h)) || mesh.is_boundary(mesh.to_vertex_handle(h));
+}
+
+bool next_to_a_split(const TriMesh& mesh, TriMesh::EdgeHandle e, int first_new) {
+  for (int side = 0; side < 2; ++side) {
+    const HH h = mesh.halfedge_handle(e, side);
+    if (mesh.is_boundary(h)) continue;
+    const VH opposite = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
+    if (opposite.idx() >= first_new && !mesh.is_boundary(opposite)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 IntermediateInterval intermediate_interval(double current_mean, double emin, double emax) {
@@ -265,11 +283,16 @@ StellarResult stellar_operations(TriMesh& mesh, double emin, double emax, double
   // while refusing every collapse that creates an edge above emax stalls with too many vertices.
   const double max_collapse_edge = emax + 0.5 * (emax - emin);
   StellarResult result;
+  const int first_new = static_cast<int>(mesh.n_vertices());  // splits add vertices from here on
   for (const Entry& entry : list) {
     const TriMesh::EdgeHandle e(entry.edge);
     if (mesh.status(e).deleted()) continue;
     const double l = geometry::edge_length(mesh, e);
     if (l > emax) {
+      // An interior edge shorter than 2 emin splits into two short halves: next to a split of this pass it waits for
+      // the next one (where every edge is long, splitting them all divided each face into four, and the next
+      // iterations collapsed most of the new vertices again).
+      if (l < 2.0 * emin && !touches_a_border(mesh, e) && next_to_a_split(mesh, e, first_new)) continue;
       split_edge(mesh, e, m);
       ++result.splits;
     } else if (l < emin) {

@@ -41,7 +41,8 @@ struct StellarResult {
   std::size_t splits = 0, collapses = 0;
 };
 // Splits edges longer than `emax` and collapses edges shorter than `emin` in priority order (farthest
-// outside first, ties by edge index); positions by Eq 4.1 with target length `m`. Leaves deleted
+// outside first, ties by edge index); positions by Eq 4.1 with target length `m`. An interior edge shorter than
+// 2 emin is not split in a pass that added an interior vertex opposite it (its halves would be short). Leaves deleted
 // elements in place (call garbage_collection()).
 StellarResult stellar_operations(TriMesh& mesh, double emin, double emax, double m);
 
