@@ -52,14 +52,15 @@ bool link_condition(const TriMesh& mesh, HH h) {
   return true;
 }
 
-// Whether a triangle of `e` has, opposite it, an interior vertex added in this pass (index >= first_new): that
-// triangle was divided by a split already. A vertex added on a border edge does not count: it has valence 3 (ideal 4)
-// until an edge of its triangle is split too, and a border vertex of valence 3 leaves that triangle almost no room.
+// Whether an end of `e` is on a border.
 bool touches_a_border(const TriMesh& mesh, TriMesh::EdgeHandle e) {
   const HH h = mesh.halfedge_handle(e, 0);
   return mesh.is_boundary(mesh.from_vertex_handle(h)) || mesh.is_boundary(mesh.to_vertex_handle(h));
 }
 
+// Whether a triangle of `e` has, opposite it, an interior vertex added in this pass (index >= first_new): that
+// triangle was divided by a split already. A vertex added on a border edge does not count: it has valence 3 (ideal 4)
+// until an edge of its triangle is split too, and a border vertex of valence 3 leaves that triangle almost no room.
 bool next_to_a_split(const TriMesh& mesh, TriMesh::EdgeHandle e, int first_new) {
   for (int side = 0; side < 2; ++side) {
     const HH h = mesh.halfedge_handle(e, side);
