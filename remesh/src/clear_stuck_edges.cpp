@@ -121,7 +121,7 @@ class StuckEdges {
     for (int pass = 0; pass < kPasses && !kept; ++pass) {
       for (auto w : variables_) saved_.emplace_back(w, mesh_.point(w));
       optimize_vertices(mesh_, variables_, emin_, emax_);
-      for (auto w : variables_) project(w);
+      for (auto w : variables_) project_with_ring(mesh_, target_, w, neighbors_);
       const std::size_t flaws = local_.flaws(mesh_, region_);
       kept = flaws < flaws_before && !folded();
       if (flaws >= last) break;
@@ -130,12 +130,6 @@ class StuckEdges {
     if (!kept)
       for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) mesh_.set_point(it->first, it->second);
     return kept;
-  }
-
-  void project(VH v) {
-    neighbors_.clear();
-    for (auto w : mesh_.vv_range(v)) neighbors_.push_back(mesh_.point(w));
-    mesh_.set_point(v, target_.project(mesh_.point(v), neighbors_));
   }
 
   // Some face at a region vertex turned against that vertex's normal before the change.
@@ -163,7 +157,6 @@ class StuckEdges {
 std::size_t clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax) {
   StuckEdges stuck(mesh, target, kn, emin, emax);
   std::size_t cleared = 0;
-  bool changed = false;
   for (int round = 0; round < kRounds; ++round) {
     std::vector<EH> edges;
     for (auto e : mesh.edges())
@@ -172,10 +165,9 @@ std::size_t clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int
     for (const EH e : edges)
       if (!mesh.status(e).deleted() && outside(mesh, e, emin, emax) && stuck.clear(e)) ++kept;
     cleared += kept;
-    changed = changed || kept > 0;
     if (kept == 0) break;
   }
-  if (changed) mesh.garbage_collection();
+  if (cleared > 0) mesh.garbage_collection();
   return cleared;
 }
 

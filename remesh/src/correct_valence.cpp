@@ -12,6 +12,7 @@
 
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "local_region.hpp"
 #include "ordered_schedule.hpp"
 #include "per_element.hpp"
 #include "remesh_geometry.hpp"
@@ -219,11 +220,7 @@ class Flipper {
     for (auto e : edges) {
       optimize_edge_region(mesh, e, c_.kn, c_.emin, c_.emax, moved_);
       saved_.insert(saved_.end(), moved_.begin(), moved_.end());
-      for (const auto& [v, before] : moved_) {
-        neighbors_.clear();
-        for (auto w : mesh.vv_range(v)) neighbors_.push_back(mesh.point(w));
-        mesh.set_point(v, c_.target.project(mesh.point(v), neighbors_));
-      }
+      for (const auto& [v, before] : moved_) project_with_ring(mesh, c_.target, v, neighbors_);
     }
     bool ok = all_inside();
     for (const auto& [v, before] : saved_)

@@ -4,6 +4,13 @@
 
 namespace carbonmesh {
 
+void project_with_ring(TriMesh& mesh, const ProjectionTarget& target, TriMesh::VertexHandle v,
+                       std::vector<Vec3>& neighbors) {
+  neighbors.clear();
+  for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
+  mesh.set_point(v, target.project(mesh.point(v), neighbors));
+}
+
 void LocalRegion::collect(const TriMesh& mesh, TriMesh::VertexHandle v, int rings,
                           std::vector<TriMesh::VertexHandle>& out) {
   if (vertex_mark_.size() < mesh.n_vertices()) vertex_mark_.resize(mesh.n_vertices(), 0);

@@ -6,8 +6,14 @@
 #include <vector>
 
 #include "carbonmesh/remesh/mesh.hpp"
+#include "carbonmesh/remesh/remesh_steps.hpp"
 
 namespace carbonmesh {
+
+// Moves `v` onto the target, with the points of its one-ring as the projection's neighbours (`neighbors`: scratch
+// space): the projection of the local steps after convergence.
+void project_with_ring(TriMesh& mesh, const ProjectionTarget& target, TriMesh::VertexHandle v,
+                       std::vector<Vec3>& neighbors);
 
 class LocalRegion {
  public:

@@ -24,11 +24,7 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
   std::size_t removed = 0;
   std::vector<std::pair<TriMesh::VertexHandle, Vec3>> moved, saved;
   std::vector<Vec3> neighbors;
-  auto project = [&](TriMesh::VertexHandle v) {
-    neighbors.clear();
-    for (auto w : mesh.vv_range(v)) neighbors.push_back(mesh.point(w));
-    mesh.set_point(v, target.project(mesh.point(v), neighbors));
-  };
+  auto project = [&](TriMesh::VertexHandle v) { project_with_ring(mesh, target, v, neighbors); };
   LocalRegion local(emin, emax);
   std::vector<TriMesh::VertexHandle> region;
   for (auto v : defects) {

@@ -171,11 +171,7 @@ struct Worker {
 
   Worker(double emin, double emax) : local(emin, emax), search(emin, emax) {}
 
-  void project(SnapState& s, TriMesh::VertexHandle v) {
-    neighbors.clear();
-    for (auto w : s.mesh.vv_range(v)) neighbors.push_back(s.mesh.point(w));
-    s.mesh.set_point(v, s.target.project(s.mesh.point(v), neighbors));
-  }
+  void project(SnapState& s, TriMesh::VertexHandle v) { project_with_ring(s.mesh, s.target, v, neighbors); }
 
   Distance measure(const SnapState& s, int i) {
     return local_distance(s.mesh, s.points.points[static_cast<std::size_t>(i)],
