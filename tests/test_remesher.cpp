@@ -840,6 +840,34 @@ TEST(Remesher, ACollapsingSurfaceStopsTheLoopAndWhatIsCutOffIsReported) {
   EXPECT_EQ(bridged.iterations, 40);
 }
 
+// Tips that no move reaches get a vertex of their own. A sphere of radius 10 (mean edge 0.75) with its 12 icosahedron
+// vertices raised by 0.8: moves put remeshed vertices onto 11 of the tips, and the nearest remeshed vertex of the last
+// one stayed 0.85 from it (the move would have to leave that vertex's neighbours behind). A split of the face under
+// it, with flips toward valence 5 and its rings relaxed, reaches it: a remeshed vertex on every tip, every edge inside,
+// no valence off by more than one.
+TEST(SnapToFeatures, GivesATipThatNoMoveReachesAVertexOfItsOwn) {
+  TriMesh input = make_icosphere({10.0, 4});
+  for (int i = 0; i < 12; ++i) {  // the icosahedron's vertices come first
+    const TriMesh::VertexHandle v(i);
+    input.set_point(v, input.point(v) * 1.08);
+  }
+  TriMesh mesh = input;
+  const RemeshResult result = remesh(mesh, RemeshSettings{});
+  ASSERT_TRUE(result.converged);
+  EXPECT_GE(result.inserted_vertices, 1u);
+  EXPECT_GT(result.snapped_vertices, 0u);
+  for (int i = 0; i < 12; ++i) {  // a remeshed vertex on each (held there by the surface fit)
+    const Vec3 tip = input.point(TriMesh::VertexHandle(i));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (auto v : mesh.vertices()) nearest = std::min(nearest, (mesh.point(v) - tip).norm());
+    EXPECT_LT(nearest, 1e-9) << "tip " << i;
+  }
+  const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  EXPECT_EQ(valence_stats(mesh).percent_eval_gt1, 0.0);
+  EXPECT_TRUE(topology(mesh).same_type(topology(input)));
+}
+
 // A move onto one input point must not pull the surface away from others. On spheres with 4% radial noise the
 // snap raised the farthest input vertex in 10 of 16 seeds (here from 1.348 to 1.471) before each move was checked
 // against the input vertices nearest its faces (none may end farther than the farthest one was).

@@ -419,6 +419,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       snap = snap_to_features(mesh, surface, *projection_target, s.kn, s.emin, s.emax, s.snap_tolerance * s.emin);
       result.snapped = true;
       result.snapped_vertices = snap.snapped;
+      result.inserted_vertices = snap.inserted;
       result.snap_max_before = snap.max_before;
       result.snap_max_after = snap.max_after;
       result.snapped_border_vertices = snap.border_snapped;
@@ -428,6 +429,10 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                     "tried), farthest {:.4f} -> {:.4f}, {:.3f}s",
                     snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.tries, snap.max_before,
                     snap.max_after, seconds() - t0);
+      if (snap.insertion_candidates > 0)
+        spdlog::debug("snap to features, insertions: {} vertices inserted at {} of {} input vertices still farther "
+                      "than {:.4f}, {:.3f}s", snap.inserted, snap.insertion_tries, snap.insertion_candidates,
+                      s.snap_tolerance * s.emin, snap.insertion_seconds);
       if (snap.border_candidates > 0)
         spdlog::debug("snap to features, borders: {} of {} border vertices of the input farther than {:.4f} snapped in "
                       "{} rounds, farthest {:.4f} -> {:.4f}",
@@ -551,6 +556,7 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"fit_rms_after", r.fit_rms_after},
           {"snapped", r.snapped},
           {"snapped_vertices", r.snapped_vertices},
+          {"inserted_vertices", r.inserted_vertices},
           {"snap_max_before", r.snap_max_before},
           {"snap_max_after", r.snap_max_after},
           {"snapped_border_vertices", r.snapped_border_vertices},

@@ -13,13 +13,18 @@
 // restored. Farthest input vertices first, in rounds: the distances of the input points next to a kept move are
 // measured again (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move
 // failed are tried again in a new neighbourhood. Moves far enough apart that neither can see the other run on all
-// threads (Schedule below), with the result of one thread taking them in order.
+// threads (Schedule below), with the result of one thread taking them in order. Last, the farthest input vertices
+// that no move reached (a tip, where the remeshed vertices near it would leave their neighbours behind) get a vertex
+// of their own, a split of the face nearest each with flips toward the ideal valences, under the same tests (on one
+// thread: the mesh grows).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <condition_variable>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <vector>
 
 #include <spdlog/spdlog.h>
@@ -46,6 +51,11 @@ constexpr int kPasses = 3;           // relax-and-project passes before a move i
                                      // clean one; given up after the second if that left no fewer flaws than the
                                      // first: on bunny, armadillo and a sphere with 2% noise 10 of 437 such third
                                      // passes kept a move, 21 of 338 where the second had reduced them)
+constexpr std::size_t kInsertFlips = 6;  // flips at most around a vertex inserted at an input vertex
+constexpr std::size_t kInsertions = 16;  // the farthest input vertices left that get an insertion tried (each try about
+                                         // 3 ms, every watched point measured; of the 26 kept on the seven
+                                         // seed-protocol models in up to 192 tries each, 16 were among the first 16)
+constexpr std::size_t kNotCounted = static_cast<std::size_t>(-1);  // try_snap() counts the flaws before the move
 constexpr double kProgressSeconds = 1.0;  // a round that takes longer is logged at info level (else debug)
 constexpr std::size_t kHopelessFlaws = 8;  // more new flaws than this after a pass: given up at once (no kept move on
                                            // the seven seed-protocol models or a sphere with 2% noise had more than 8
@@ -167,6 +177,9 @@ struct Worker {
   std::vector<Vec3> neighbors;
   std::vector<int> watched;
   std::vector<std::pair<double, int>> choices;
+  std::vector<TriMesh::EdgeHandle> flipped;
+  std::vector<int> affected;
+  bool remeasure = false;  // watched points measured, not bounded (after a face split)
   std::size_t tries = 0, snapped = 0;
 
   Worker(double emin, double emax) : local(emin, emax), search(emin, emax) {}
@@ -183,6 +196,18 @@ struct Worker {
     Vec3 a, b, c;
     geometry::face_points(s.mesh, f, a, b, c);
     return face_distance(*s.input_tree, a, b, c);
+  }
+
+  // Whether face f turned against the input's face nearest its centroid (a fold; the face split at an input vertex
+  // cannot be the reference: at a tip the new faces rise steeply from it).
+  static bool against_input(const SnapState& s, TriMesh::FaceHandle f) {
+    Vec3 a, b, c;
+    geometry::face_points(s.mesh, f, a, b, c);
+    const auto nearest = s.input_tree->closest_point_and_primitive(to_point((a + b + c) / 3.0));
+    const Triangle& t = *nearest.second;
+    const auto n = CGAL::cross_product(t[1] - t[0], t[2] - t[0]);
+    const Vec3 normal = Vec3(n.x(), n.y(), n.z()).normalized();
+    return OpenMesh::dot(normal, geometry::face_normal(s.mesh, f)) < -geometry::kMaxNormalTurnCos;
   }
 
   // After a move: whether every face it may have changed is nearer the input than `limit` (seven points each).
@@ -213,7 +238,7 @@ struct Worker {
       const auto k = static_cast<std::size_t>(i);
       Distance d = s.upper[k];
       d.d += corner_shift(s, d.face);
-      if (d.d >= limit * (1 - 1e-9)) d = measure(s, i);
+      if (remeasure || d.d >= limit * (1 - 1e-9)) d = measure(s, i);
       if (d.d >= limit) return false;
       watched_upper.push_back(d);
     }
@@ -227,10 +252,12 @@ struct Worker {
   // 0.537 but raised bunny's 0.798 -> 0.850 and its RMS, 2M samples), and so does every face it moved (with kn + 2
   // rings relaxed and without this check the moved faces went 0.51 from armadillo's input, 2M samples; a stricter
   // one, each face no farther than it was or than the tolerance, kept 40% fewer moves and raised the maxima).
-  bool try_snap(SnapState& s, TriMesh::VertexHandle v, const Vec3& q) {
+  bool try_snap(SnapState& s, TriMesh::VertexHandle v, const Vec3& q, std::size_t flaws_given = kNotCounted,
+                double limit = 0) {
     TriMesh& mesh = s.mesh;
+    if (limit <= 0) limit = s.round_max;
     local.collect(mesh, v, s.kn + kRelaxRings + 2, region);  // every vertex the relaxation moves, with their stars
-    const std::size_t flaws_before = local.flaws(mesh, region);
+    const std::size_t flaws_before = flaws_given != kNotCounted ? flaws_given : local.flaws(mesh, region);
     local.faces(mesh, region, region_faces);  // each once: the fold check below runs every pass
     watched.clear();
     for (auto f : region_faces)
@@ -276,8 +303,7 @@ struct Worker {
       for (const auto& [f, before] : normals)
         folded = folded || OpenMesh::dot(before, geometry::face_normal(mesh, f)) < geometry::kMaxNormalTurnCos;
       const std::size_t flaws = local.flaws(mesh, region);
-      if (!folded && flaws <= flaws_before && watched_within(s, s.round_max) &&
-          faces_within(s, s.round_max)) {
+      if (!folded && flaws <= flaws_before && watched_within(s, limit) && faces_within(s, limit)) {
         for (auto w : region) s.touched[static_cast<std::size_t>(w.idx())] = 1;
         for (std::size_t j = 0; j < watched.size(); ++j)
           s.upper[static_cast<std::size_t>(watched[j])] = watched_upper[j];
@@ -290,6 +316,90 @@ struct Worker {
     for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
     s.fixed[static_cast<std::size_t>(v.idx())] = 0;
     return false;
+  }
+
+  // Input vertex q, still farther than the tolerance after the moves, gets a vertex of its own: `face` (its nearest)
+  // is split at q, and the edges opposite the new vertex are flipped while that brings the valences of their four
+  // vertices nearer the ideal (a tip of the input, such as bunny's ear, takes a vertex of valence 5); the free
+  // vertices around it are then relaxed as in try_snap(), with the same tests, and a valence off the ideal by more
+  // than one at the new vertex or its neighbours undoes it too (flips back, then a collapse that leaves `face` as
+  // it was). A move cannot do this where the remeshed vertices near q would have to leave their neighbours behind:
+  // on bunny's ear tip each of the three nearest moved 1.3 from them with 20-30 edges left outside after any
+  // number of relaxation passes. Serial: the mesh grows.
+  bool try_insert(SnapState& s, TriMesh::FaceHandle face, const Vec3& q, double distance) {
+    TriMesh& mesh = s.mesh;
+    const TriMesh::VertexHandle corner = mesh.to_vertex_handle(mesh.halfedge_handle(face));
+    local.collect(mesh, corner, s.kn + kRelaxRings + 3, region);
+    const std::size_t flaws_before = local.flaws(mesh, region);
+    const TriMesh::VertexHandle nv = mesh.split(face, q);
+    s.fixed.resize(mesh.n_vertices(), 0);
+    s.touched.resize(mesh.n_vertices(), 0);
+    s.first_near.resize(mesh.n_faces(), -1);
+    flipped.clear();
+    for (bool again = true; again && flipped.size() < kInsertFlips;) {
+      again = false;
+      for (auto h : mesh.voh_range(nv)) {
+        const auto link = mesh.next_halfedge_handle(h);  // the edge opposite nv in this triangle
+        const auto e = mesh.edge_handle(link);
+        if (mesh.is_boundary(e) || !mesh.is_flip_ok(e)) continue;
+        const auto a = mesh.from_vertex_handle(link), b = mesh.to_vertex_handle(link);
+        const auto d = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(link)));
+        auto off = [&](TriMesh::VertexHandle w, int change) {
+          const int x = static_cast<int>(mesh.valence(w)) + change - ideal_valence(mesh, w);
+          return x * x;
+        };
+        const int before = off(a, 0) + off(b, 0) + off(nv, 0) + off(d, 0);
+        const int after = off(a, -1) + off(b, -1) + off(nv, 1) + off(d, 1);
+        if (after >= before || !geometry::flip_keeps_shape(mesh.point(a), mesh.point(b), q, mesh.point(d))) continue;
+        mesh.flip(e);
+        flipped.push_back(e);
+        again = true;
+        break;
+      }
+    }
+    bool valences = true;
+    for (auto w : mesh.vv_range(nv))
+      valences = valences && std::abs(static_cast<int>(mesh.valence(w)) - ideal_valence(mesh, w)) <= 1;
+    valences = valences && std::abs(static_cast<int>(mesh.valence(nv)) - ideal_valence(mesh, nv)) <= 1;
+    remeasure = true;  // the faces changed by more than their corners' moves: every watched point measured again
+    bool kept = valences && try_snap(s, nv, q, flaws_before, distance);
+    remeasure = false;
+    const bool bounds_changed = kept;
+    if (kept) {  // try_snap compares the faces with themselves after the split: the new ones with the input here
+      for (auto f : mesh.vf_range(nv)) kept = kept && !against_input(s, f);
+      if (kept) return true;
+      for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
+      s.fixed[static_cast<std::size_t>(nv.idx())] = 0;
+    }
+    undo_insertion(s, nv, corner, bounds_changed);
+    return false;
+  }
+
+  // Flips back and collapses the vertex `nv` of try_insert() (positions already restored). A flip flipped back gives
+  // its two faces each other's triangles, and the collapse deletes two of nv's faces: the input points bounded by one
+  // of nv's faces (and with `bounds_changed` those try_snap() gave new bounds) are measured again, from a face at
+  // `corner` (a corner of the split face).
+  void undo_insertion(SnapState& s, TriMesh::VertexHandle nv, TriMesh::VertexHandle corner, bool bounds_changed) {
+    TriMesh& mesh = s.mesh;
+    affected.clear();
+    for (auto f : mesh.vf_range(nv)) affected.push_back(f.idx());
+    std::sort(affected.begin(), affected.end());
+    for (auto it = flipped.rbegin(); it != flipped.rend(); ++it) mesh.flip(*it);
+    const auto out = *mesh.voh_range(nv).begin();
+    if (!mesh.is_collapse_ok(out)) throw std::logic_error("snap: a face split could not be undone");
+    mesh.collapse(out);
+    const auto anchor = *mesh.vf_range(corner).begin();
+    auto is_affected = [&](int f) { return std::binary_search(affected.begin(), affected.end(), f); };
+    auto remeasure_point = [&](std::size_t i) {
+      Distance& d = s.distances[i];
+      if (is_affected(d.face)) d.face = anchor.idx();
+      d = s.upper[i] = measure(s, static_cast<int>(i));
+    };
+    if (bounds_changed)
+      for (const int i : watched) remeasure_point(static_cast<std::size_t>(i));
+    for (std::size_t i = 0; i < s.distances.size(); ++i)
+      if (s.distances[i].face >= 0 && (is_affected(s.distances[i].face) || is_affected(s.upper[i].face)))
+        remeasure_point(i);
   }
 
   // The move of input vertex c: reads the mesh within kn + 9 rings of the corners of c's nearest face and writes
@@ -554,6 +664,60 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   if (result.border_max_before > tolerance)
     result.border_snapped = rounds(true, result.border_candidates, result.border_rounds);
   result.border_max_after = border_max();
+  // Last, the interior input vertices no move reached get a vertex of their own (farthest first, on one thread).
+  state.borders = false;
+  std::vector<int> candidates;
+  for (std::size_t i = 0; i < nv; ++i)
+    if (distances[i].d > tolerance && distances[i].face >= 0 &&
+        !input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
+      candidates.push_back(static_cast<int>(i));
+  std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
+    const double da = distances[static_cast<std::size_t>(a)].d, db = distances[static_cast<std::size_t>(b)].d;
+    return da != db ? da > db : a < b;
+  });
+  if (candidates.size() > kInsertions) candidates.resize(kInsertions);
+  result.insertion_candidates = candidates.size();
+  const auto insertion_start = std::chrono::steady_clock::now();
+  if (!candidates.empty()) {
+    Worker& worker = workers[0];
+    state.upper = distances;
+    state.round_max = 0;
+    for (const auto& d : distances) state.round_max = std::max(state.round_max, d.d);
+    auto index_by_face = [&] {  // the watched points of a move: those whose bound is set by one of its faces
+      state.first_near.assign(mesh.n_faces(), -1);
+      for (std::size_t i = 0; i < state.upper.size(); ++i)
+        if (state.upper[i].face >= 0) {
+          state.next_near[i] = state.first_near[static_cast<std::size_t>(state.upper[i].face)];
+          state.first_near[static_cast<std::size_t>(state.upper[i].face)] = static_cast<int>(i);
+        }
+    };
+    index_by_face();
+    for (const int c : candidates) {
+      const auto k = static_cast<std::size_t>(c);
+      distances[k] = state.upper[k] = worker.measure(state, c);
+      if (distances[k].d <= tolerance) continue;
+      ++result.insertion_tries;
+      if (!worker.try_insert(state, TriMesh::FaceHandle(distances[k].face), input.point(TriMesh::VertexHandle(c)),
+                             distances[k].d))
+        continue;
+      ++result.inserted;
+      index_by_face();
+    }
+    // The undone splits leave deleted elements: collected, the snapped vertices' flags carried along.
+    std::vector<TriMesh::VertexHandle> fixed_vertices;
+    for (auto v : mesh.vertices())
+      if (state.fixed[static_cast<std::size_t>(v.idx())]) fixed_vertices.push_back(v);
+    std::vector<TriMesh::VertexHandle*> vertex_pointers;
+    for (auto& v : fixed_vertices) vertex_pointers.push_back(&v);
+    std::vector<TriMesh::HalfedgeHandle*> halfedge_pointers;
+    std::vector<TriMesh::FaceHandle*> face_pointers;
+    mesh.garbage_collection(vertex_pointers, halfedge_pointers, face_pointers);
+    state.fixed.assign(mesh.n_vertices(), 0);
+    for (auto v : fixed_vertices) state.fixed[static_cast<std::size_t>(v.idx())] = 1;
+    distances = state.upper;  // (the distances as measured, or upper bounds where a kept insertion changed faces)
+    result.border_max_after = border_max();
+  }
+  result.insertion_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - insertion_start).count();
   for (const auto& w : workers) result.tries += w.tries;
   result.max_after = interior_max();  // (the border step may move interior vertices too)
   result.fixed = std::move(state.fixed);

@@ -137,9 +137,10 @@ void add_remesh_command(CLI::App& app, Action& action) {
             result.seconds, topology_text(result.before), topology_text(result.after),
             result.before.same_type(result.after) ? "" : "  (SURFACE TYPE CHANGED)");
         if (result.snapped)
-          std::cout << fmt::format("feature snap: {} vertices moved onto the input, farthest input vertex {:.4f} -> "
-                                   "{:.4f}\n",
-                                   result.snapped_vertices, result.snap_max_before, result.snap_max_after);
+          std::cout << fmt::format("feature snap: {} vertices moved onto the input, {} inserted, farthest input "
+                                   "vertex {:.4f} -> {:.4f}\n",
+                                   result.snapped_vertices, result.inserted_vertices, result.snap_max_before,
+                                   result.snap_max_after);
         if (result.snapped && result.snap_border_max_before > 0)
           std::cout << fmt::format("feature snap, borders: {} border vertices moved onto the input's border, farthest "
                                    "border vertex {:.4f} -> {:.4f}\n",

@@ -210,6 +210,10 @@ struct SnapResult {
   std::size_t border_candidates = 0, border_snapped = 0;
   int border_rounds = 0;
   double border_max_before = 0, border_max_after = 0;
+  // Then the interior input vertices still farther than the tolerance, each given a vertex of its own (a split of
+  // its nearest face) where that passes the same tests.
+  std::size_t insertion_candidates = 0, insertion_tries = 0, inserted = 0;
+  double insertion_seconds = 0;
 };
 // Each interior input vertex farther than `tolerance` from `mesh` (farthest first) pulls the nearest free
 // interior vertex of `mesh` onto itself; the interior vertices of its kn+2 rings are relaxed (Error_b with
@@ -218,7 +222,10 @@ struct SnapResult {
 // faces, and the moved faces themselves, nearer the input than the farthest of those input points was (that
 // distance never grows); with every edge inside before they all stay inside. Then the same for the input's border
 // vertices, each pulling the nearest free border vertex of `mesh` onto itself (interior and border points measured
-// together for the farthest distance).
+// together for the farthest distance). Last, the 16 farthest interior input vertices still farther than `tolerance`
+// each get a new vertex where that passes the same tests (a split of the face nearest it, flips toward the ideal
+// valences, no valence off it by more than one, no new face turned against the input); `mesh` is then without
+// deleted elements, and `fixed` covers the new vertices.
 SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                             double emax, double tolerance);
 

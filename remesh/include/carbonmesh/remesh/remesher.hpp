@@ -112,6 +112,7 @@ struct RemeshResult {
   double fit_rms_before = 0, fit_rms_after = 0;  // its area-weighted RMS distance to the input, before and after
   bool snapped = false;              // snap_to_features ran (settings.snap_features)
   std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
+  std::size_t inserted_vertices = 0;  // vertices it added at input vertices no move reached (a split face each)
   // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit).
   double snap_max_before = 0, snap_max_after = 0;
   // The same for the input's border vertices (border vertices moved onto the corners of the input's borders).
