@@ -329,7 +329,7 @@ struct Worker {
   bool try_insert(SnapState& s, TriMesh::FaceHandle face, const Vec3& q, double distance) {
     TriMesh& mesh = s.mesh;
     const TriMesh::VertexHandle corner = mesh.to_vertex_handle(mesh.halfedge_handle(face));
-    local.collect(mesh, corner, s.kn + kRelaxRings + 3, region);
+    local.collect(mesh, corner, s.kn + kRelaxRings + 1, region);  // within the region try_snap() counts around nv
     const std::size_t flaws_before = local.flaws(mesh, region);
     const TriMesh::VertexHandle nv = mesh.split(face, q);
     s.fixed.resize(mesh.n_vertices(), 0);
