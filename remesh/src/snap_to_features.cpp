@@ -53,8 +53,9 @@ constexpr int kPasses = 3;           // relax-and-project passes before a move i
                                      // passes kept a move, 21 of 338 where the second had reduced them)
 constexpr std::size_t kInsertFlips = 6;  // flips at most around a vertex inserted at an input vertex
 constexpr std::size_t kInsertions = 16;  // the farthest input vertices left that get an insertion tried (each try about
-                                         // 3 ms, every watched point measured; of the 26 kept on the seven
-                                         // seed-protocol models in up to 192 tries each, 16 were among the first 16)
+                                         // 3 ms, every watched point measured; of the 22 kept on the seven
+                                         // seed-protocol models in up to 192 tries each, 15 were among the first 16,
+                                         // the other 7 on armadillo, whose maximum they did not move)
 constexpr std::size_t kNotCounted = static_cast<std::size_t>(-1);  // try_snap() counts the flaws before the move
 constexpr double kProgressSeconds = 1.0;  // a round that takes longer is logged at info level (else debug)
 constexpr std::size_t kHopelessFlaws = 8;  // more new flaws than this after a pass: given up at once (no kept move on
