@@ -77,12 +77,12 @@ struct ValenceTable {
 int valence_improvement(const TriMesh& mesh, TriMesh::EdgeHandle e) {
   if (mesh.status(e).deleted() || mesh.is_boundary(e)) return 0;
   const FlipQuad q = quad(mesh, e);
-  std::vector<int> valence(mesh.n_vertices()), ideal(mesh.n_vertices());
-  for (auto v : {q.a, q.b, q.c, q.d}) {
-    valence[static_cast<std::size_t>(v.idx())] = static_cast<int>(mesh.valence(v));
-    ideal[static_cast<std::size_t>(v.idx())] = ideal_valence(mesh, v);
-  }
-  return improvement(q, valence, ideal);
+  // improvement() read from the mesh (no tables of every vertex: the feature snap calls this per flip it considers)
+  auto off = [&](TriMesh::VertexHandle v, int change) {
+    return sq(ideal_valence(mesh, v) - (static_cast<int>(mesh.valence(v)) + change));
+  };
+  return off(q.a, 0) + off(q.b, 0) + off(q.c, 0) + off(q.d, 0) -
+         (off(q.a, -1) + off(q.b, -1) + off(q.c, 1) + off(q.d, 1));
 }
 
 std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep) {

@@ -140,6 +140,14 @@ Distance local_distance(const TriMesh& mesh, const Vec3& q, TriMesh::FaceHandle 
   return best;
 }
 
+// Input vertex indices, farthest from the remeshed surface first (ties by index).
+void sort_farthest_first(std::vector<int>& candidates, const std::vector<Distance>& distances) {
+  std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
+    const double da = distances[static_cast<std::size_t>(a)].d, db = distances[static_cast<std::size_t>(b)].d;
+    return da != db ? da > db : a < b;
+  });
+}
+
 // What every move of a round reads and writes: the mesh, the input points' distances as measured at the start of
 // the round, and the per-vertex marks.
 struct SnapState {
@@ -161,6 +169,19 @@ struct SnapState {
   double round_max = 0;  // the farthest input point at the start of the round
   const Tree* input_tree = nullptr;  // the input's faces
   bool borders = false;   // the step for the input's border vertices: border vertices slide in the relaxation too
+
+  // Links the input points by the face that sets their distance in `by` (the distances, or their upper bounds), and
+  // sets round_max to the farthest of them.
+  void link_by_face(const std::vector<Distance>& by) {
+    first_near.assign(mesh.n_faces(), -1);
+    round_max = 0;
+    for (std::size_t i = 0; i < by.size(); ++i) {
+      round_max = std::max(round_max, by[i].d);
+      if (by[i].face < 0) continue;
+      next_near[i] = first_near[static_cast<std::size_t>(by[i].face)];
+      first_near[static_cast<std::size_t>(by[i].face)] = static_cast<int>(i);
+    }
+  }
 };
 
 // One thread's scratch space and counts; visit() is the move of one candidate input vertex.
@@ -206,8 +227,8 @@ struct Worker {
     geometry::face_points(s.mesh, f, a, b, c);
     const auto nearest = s.input_tree->closest_point_and_primitive(to_point((a + b + c) / 3.0));
     const Triangle& t = *nearest.second;
-    const auto n = CGAL::cross_product(t[1] - t[0], t[2] - t[0]);
-    const Vec3 normal = Vec3(n.x(), n.y(), n.z()).normalized();
+    auto vec = [](const Point& p) { return Vec3(p.x(), p.y(), p.z()); };
+    const Vec3 normal = geometry::triangle_normal(vec(t[0]), vec(t[1]), vec(t[2]));
     return OpenMesh::dot(normal, geometry::face_normal(s.mesh, f)) < -geometry::kMaxNormalTurnCos;
   }
 
@@ -345,13 +366,9 @@ struct Worker {
         if (mesh.is_boundary(e) || !mesh.is_flip_ok(e)) continue;
         const auto a = mesh.from_vertex_handle(link), b = mesh.to_vertex_handle(link);
         const auto d = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(link)));
-        auto off = [&](TriMesh::VertexHandle w, int change) {
-          const int x = static_cast<int>(mesh.valence(w)) + change - ideal_valence(mesh, w);
-          return x * x;
-        };
-        const int before = off(a, 0) + off(b, 0) + off(nv, 0) + off(d, 0);
-        const int after = off(a, -1) + off(b, -1) + off(nv, 1) + off(d, 1);
-        if (after >= before || !geometry::flip_keeps_shape(mesh.point(a), mesh.point(b), q, mesh.point(d))) continue;
+        if (valence_improvement(mesh, e) <= 0 ||  // Eq 4.3 over a, b (an edge less), nv and d (an edge more)
+            !geometry::flip_keeps_shape(mesh.point(a), mesh.point(b), q, mesh.point(d)))
+          continue;
         mesh.flip(e);
         flipped.push_back(e);
         again = true;
@@ -592,20 +609,10 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
             borders == input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
           candidates.push_back(static_cast<int>(i));
       if (round == 0) first_candidates = candidates.size();
-      std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
-        const double da = distances[static_cast<std::size_t>(a)].d, db = distances[static_cast<std::size_t>(b)].d;
-        return da != db ? da > db : a < b;
-      });
+      sort_farthest_first(candidates, distances);
       std::fill(state.touched.begin(), state.touched.end(), 0);
-      state.round_max = 0;
       state.upper = distances;
-      for (const auto& d : distances) state.round_max = std::max(state.round_max, d.d);
-      state.first_near.assign(mesh.n_faces(), -1);
-      for (std::size_t i = 0; i < distances.size(); ++i)
-        if (distances[i].face >= 0) {
-          state.next_near[i] = state.first_near[static_cast<std::size_t>(distances[i].face)];
-          state.first_near[static_cast<std::size_t>(distances[i].face)] = static_cast<int>(i);
-        }
+      state.link_by_face(distances);
       // Farthest first; candidates far enough apart that neither move can see the other's run in parallel, so the
       // result is that of one thread taking them in order.
       for (auto& w : workers) w.snapped = 0;
@@ -672,27 +679,14 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
     if (distances[i].d > tolerance && distances[i].face >= 0 &&
         !input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
       candidates.push_back(static_cast<int>(i));
-  std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
-    const double da = distances[static_cast<std::size_t>(a)].d, db = distances[static_cast<std::size_t>(b)].d;
-    return da != db ? da > db : a < b;
-  });
+  sort_farthest_first(candidates, distances);
   if (candidates.size() > kInsertions) candidates.resize(kInsertions);
   result.insertion_candidates = candidates.size();
   const auto insertion_start = std::chrono::steady_clock::now();
   if (!candidates.empty()) {
     Worker& worker = workers[0];
     state.upper = distances;
-    state.round_max = 0;
-    for (const auto& d : distances) state.round_max = std::max(state.round_max, d.d);
-    auto index_by_face = [&] {  // the watched points of a move: those whose bound is set by one of its faces
-      state.first_near.assign(mesh.n_faces(), -1);
-      for (std::size_t i = 0; i < state.upper.size(); ++i)
-        if (state.upper[i].face >= 0) {
-          state.next_near[i] = state.first_near[static_cast<std::size_t>(state.upper[i].face)];
-          state.first_near[static_cast<std::size_t>(state.upper[i].face)] = static_cast<int>(i);
-        }
-    };
-    index_by_face();
+    state.link_by_face(state.upper);  // (bounds: a kept insertion links the points it measured again)
     for (const int c : candidates) {
       const auto k = static_cast<std::size_t>(c);
       distances[k] = state.upper[k] = worker.measure(state, c);
@@ -702,7 +696,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
                              distances[k].d))
         continue;
       ++result.inserted;
-      index_by_face();
+      state.link_by_face(state.upper);  // (round_max: unused here, each insertion has its own limit)
     }
     // The undone splits leave deleted elements: collected, the snapped vertices' flags carried along.
     std::vector<TriMesh::VertexHandle> fixed_vertices;
