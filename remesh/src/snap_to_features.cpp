@@ -12,7 +12,7 @@
 // never grows, and the moved faces do not go farther from the input than that either); otherwise every position is
 // restored. Farthest input vertices first, in rounds: the distances of the input points next to a kept move are
 // measured again (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move
-// failed are tried again in a new neighbourhood. Moves far enough apart that neither can see the other run on all
+// failed are tried once more in a new neighbourhood. Moves far enough apart that neither can see the other run on all
 // threads (Schedule below), with the result of one thread taking them in order. Last, the farthest input vertices
 // that no move reached (a tip, where the remeshed vertices near it would leave their neighbours behind) get a vertex
 // of their own, a split of the face nearest each with flips toward the ideal valences, under the same tests (on one
@@ -52,6 +52,10 @@ constexpr int kPasses = 3;           // relax-and-project passes before a move i
                                      // first: on bunny, armadillo and a sphere with 2% noise 10 of 437 such third
                                      // passes kept a move, 21 of 338 where the second had reduced them)
 constexpr std::size_t kInsertFlips = 6;  // flips at most around a vertex inserted at an input vertex
+constexpr int kVisits = 2;  // tries of one input vertex in the rounds: the first and one more in a new neighbourhood
+                            // (retries kept 5 moves of 212 on the seven seed-protocol models, 2 of them third tries;
+                            // on a thin fin eroded by the remesh a kept move made thousands of points try again, 0 of
+                            // 3917 kept, 5406 tries and 97% of the remesh time)
 constexpr std::size_t kInsertions = 16;  // the farthest input vertices left that get an insertion tried (each try about
                                          // 3 ms, every watched point measured; of the 22 kept on the seven
                                          // seed-protocol models in up to 192 tries each, 15 were among the first 16,
@@ -160,6 +164,7 @@ struct SnapState {
   int kn;
   double emin, emax;
   std::vector<char> fixed, touched, tried;
+  std::vector<int> visits;  // rounds' tries of each input vertex (at most kVisits)
   std::vector<Distance> distances;
   // Upper bounds of the input points' distances in the round, each the distance to one face at most (kept moves
   // update them).
@@ -431,6 +436,7 @@ struct Worker {
     for (auto w : mesh.fv_range(face)) stale = stale || s.touched[static_cast<std::size_t>(w.idx())];
     if (stale) return;
     s.tried[static_cast<std::size_t>(c)] = 1;
+    ++s.visits[static_cast<std::size_t>(c)];
     // The free vertices nearest the point among the nearest face's corners and their neighbours, border vertices
     // for a corner of the input's border and interior ones else; the second only if it is within emin (on armadillo
     // 0 of 13 second choices farther away were kept).
@@ -582,6 +588,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   state.fixed.assign(mesh.n_vertices(), 0);
   state.touched.assign(mesh.n_vertices(), 0);
   state.tried.assign(nv, 0);
+  state.visits.assign(nv, 0);
   state.next_near.assign(points.points.size(), -1);
   measure_input(mesh, points, points.all, state.distances);
   const Triangles input_triangles = triangles_of(input);
@@ -605,7 +612,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
       const auto round_start = std::chrono::steady_clock::now();
       candidates.clear();
       for (std::size_t i = 0; i < nv; ++i)
-        if (distances[i].d > tolerance && distances[i].face >= 0 && !state.tried[i] &&
+        if (distances[i].d > tolerance && distances[i].face >= 0 && !state.tried[i] && state.visits[i] < kVisits &&
             borders == input.is_boundary(TriMesh::VertexHandle(static_cast<int>(i))))
           candidates.push_back(static_cast<int>(i));
       if (round == 0) first_candidates = candidates.size();
