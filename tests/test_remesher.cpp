@@ -887,6 +887,30 @@ TEST(SnapToFeatures, NeverMovesTheSurfaceFartherFromTheInput) {
   EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
 }
 
+// An ellipsoid 12 x 4 x 1 (thinner than the interval at its rim, which the remesh pulls in): thousands of input points
+// are off the result, all nearest a few dozen remeshed faces. Each round tries the two farthest points nearest a face
+// (kPerFace) and each point at most twice (kVisits): 703 moves tried for 6951 candidates, where trying every point in
+// every new neighbourhood took 9979.
+TEST(SnapToFeatures, TriesAFewPointsPerFaceWhereTheRemeshCutAThinRimOff) {
+  TriMesh input = make_icosphere({1.0, 5});
+  for (auto v : input.vertices()) {
+    const Vec3 p = input.point(v);
+    input.set_point(v, Vec3(12 * p[0], 4 * p[1], p[2]));
+  }
+  TriMesh mesh = input;
+  RemeshSettings settings;
+  settings.snap_features = settings.fit_surface = false;
+  const RemeshResult remeshed = remesh(mesh, settings);
+  ASSERT_EQ(remeshed.long_edges + remeshed.short_edges, 0u);
+  const ProjectionTarget target(input, 4 * settings.emax);
+  const SnapResult snap = snap_to_features(mesh, input, target, settings.kn, settings.emin, settings.emax,
+                                           settings.snap_tolerance * settings.emin);
+  EXPECT_GT(snap.candidates, 1000u);
+  EXPECT_LT(4 * snap.tries, snap.candidates);
+  const EdgeStats edges = edge_stats(mesh, {settings.emin, settings.emax});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+}
+
 // The snap's moves run on every thread where they are far enough apart not to see each other: the same mesh, the
 // same vertices held and the same counts as on one thread, on a sphere with 4% noise (dozens of moves tried) and on
 // the same with a border.

@@ -56,6 +56,10 @@ constexpr int kVisits = 2;  // tries of one input vertex in the rounds: the firs
                             // (retries kept 5 moves of 212 on the seven seed-protocol models, 2 of them third tries;
                             // on a thin fin eroded by the remesh a kept move made thousands of points try again, 0 of
                             // 3917 kept, 5406 tries and 97% of the remesh time)
+constexpr int kPerFace = 2;  // input points nearest one remeshed face tried in a round, farthest first (the others
+                             // wait for a later round): on an ellipsoid 12 x 4 x 1 whose rim the remesh pulls in,
+                             // 9012 candidates had 36 nearest faces (bunny: 146 on 133), and 2910 first tries of
+                             // them kept nothing
 constexpr std::size_t kInsertions = 16;  // the farthest input vertices left that get an insertion tried (each try about
                                          // 3 ms, every watched point measured; of the 22 kept on the seven
                                          // seed-protocol models in up to 192 tries each, 15 were among the first 16,
@@ -607,7 +611,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   // one keeps none; returns the moves kept.
   auto rounds = [&](bool borders, std::size_t& first_candidates, int& rounds_run) {
     std::size_t kept = 0;
-    std::vector<int> candidates;
+    std::vector<int> candidates, per_face;
     for (int round = 0; round < kRounds; ++round) {
       const auto round_start = std::chrono::steady_clock::now();
       candidates.clear();
@@ -617,6 +621,14 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
           candidates.push_back(static_cast<int>(i));
       if (round == 0) first_candidates = candidates.size();
       sort_farthest_first(candidates, distances);
+      // The kPerFace farthest of the points nearest one remeshed face (the others wait for a later round).
+      per_face.assign(mesh.n_faces(), 0);
+      const std::size_t listed = candidates.size();
+      std::size_t taken = 0;
+      for (const int c : candidates)
+        if (++per_face[static_cast<std::size_t>(distances[static_cast<std::size_t>(c)].face)] <= kPerFace)
+          candidates[taken++] = c;
+      candidates.resize(taken);
       std::fill(state.touched.begin(), state.touched.end(), 0);
       state.upper = distances;
       state.link_by_face(distances);
@@ -650,7 +662,7 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
       spdlog::log(seconds >= kProgressSeconds ? spdlog::level::info : spdlog::level::debug,
                   "snap to features, {}round {}: {} of {} input vertices snapped, {:.1f}s", borders ? "border " : "",
                   round + 1, snapped, candidates.size(), seconds);
-      if (snapped == 0) break;
+      if (snapped == 0 && candidates.size() == listed) break;  // none kept and none waiting
     }
     return kept;
   };
