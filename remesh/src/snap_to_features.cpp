@@ -12,8 +12,10 @@
 // never grows, and the moved faces do not go farther from the input than that either); otherwise every position is
 // restored. Farthest input vertices first, in rounds: the distances of the input points next to a kept move are
 // measured again (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move
-// failed are tried once more in a new neighbourhood. Moves far enough apart that neither can see the other run on all
-// threads (Schedule below), with the result of one thread taking them in order. Last, the farthest input vertices
+// failed are tried once more in a new neighbourhood; of the points nearest one remeshed face, a round tries the two
+// farthest (a rim the remesh pulls in leaves thousands of points nearest a few faces). Moves far enough apart that
+// neither can see the other run on all threads (Schedule below), with the result of one thread taking them in order.
+// Last, the farthest input vertices
 // that no move reached (a tip, where the remeshed vertices near it would leave their neighbours behind) get a vertex
 // of their own, a split of the face nearest each with flips toward the ideal valences, under the same tests (on one
 // thread: the mesh grows).
