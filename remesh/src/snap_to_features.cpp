@@ -15,10 +15,9 @@
 // failed are tried once more in a new neighbourhood; of the points nearest one remeshed face, a round tries the two
 // farthest (a rim the remesh pulls in leaves thousands of points nearest a few faces). Moves far enough apart that
 // neither can see the other run on all threads (Schedule below), with the result of one thread taking them in order.
-// Last, the farthest input vertices
-// that no move reached (a tip, where the remeshed vertices near it would leave their neighbours behind) get a vertex
-// of their own, a split of the face nearest each with flips toward the ideal valences, under the same tests (on one
-// thread: the mesh grows).
+// Last, the farthest input vertices that no move reached (a tip, where the remeshed vertices near it would leave their
+// neighbours behind) get a vertex of their own, a split of the face nearest each with flips toward the ideal
+// valences, under the same tests (on one thread: the mesh grows).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
