@@ -12,7 +12,7 @@
 // never grows, and the moved faces do not go farther from the input than that either); otherwise every position is
 // restored. Farthest input vertices first, in rounds: the distances of the input points next to a kept move are
 // measured again (locally) before the next round, so a ridge is captured vertex by vertex, and those whose move
-// failed are tried once more in a new neighbourhood; of the points nearest one remeshed face, a round tries the two
+// failed are tried once more in a new neighbourhood; of the points nearest one remeshed face, a round tries the four
 // farthest (a rim the remesh pulls in leaves thousands of points nearest a few faces). Moves far enough apart that
 // neither can see the other run on all threads (Schedule below), with the result of one thread taking them in order.
 // Last, the farthest input vertices that no move reached (a tip, where the remeshed vertices near it would leave their
@@ -57,10 +57,10 @@ constexpr int kVisits = 2;  // tries of one input vertex in the rounds: the firs
                             // (retries kept 5 moves of 212 on the seven seed-protocol models, 2 of them third tries;
                             // on a thin fin eroded by the remesh a kept move made thousands of points try again, 0 of
                             // 3917 kept, 5406 tries and 97% of the remesh time)
-constexpr int kPerFace = 2;  // input points nearest one remeshed face tried in a round, farthest first (the others
+constexpr int kPerFace = 4;  // input points nearest one remeshed face tried in a round, farthest first (the others
                              // wait for a later round): on an ellipsoid 12 x 4 x 1 whose rim the remesh pulls in,
                              // 9012 candidates had 36 nearest faces (bunny: 146 on 133), and 2910 first tries of
-                             // them kept nothing
+                             // them kept nothing; with 2 an ellipsoid 10 x 1 x 1 ended 0.48 from its input, not 0.38
 constexpr std::size_t kInsertions = 16;  // the farthest input vertices left that get an insertion tried (each try about
                                          // 3 ms, every watched point measured; of the 22 kept on the seven
                                          // seed-protocol models in up to 192 tries each, 15 were among the first 16,
