@@ -892,11 +892,7 @@ TEST(SnapToFeatures, NeverMovesTheSurfaceFartherFromTheInput) {
 // (kPerFace) and each point at most twice (kVisits): 1333 moves tried for 6951 candidates, where trying every point in
 // every new neighbourhood took 9979.
 TEST(SnapToFeatures, TriesAFewPointsPerFaceWhereTheRemeshCutAThinRimOff) {
-  TriMesh input = make_icosphere({1.0, 5});
-  for (auto v : input.vertices()) {
-    const Vec3 p = input.point(v);
-    input.set_point(v, Vec3(12 * p[0], 4 * p[1], p[2]));
-  }
+  const TriMesh input = test::stretched(test::stretched(make_icosphere({1.0, 5}), 0, 12), 1, 4);
   TriMesh mesh = input;
   RemeshSettings settings;
   settings.snap_features = settings.fit_surface = false;
