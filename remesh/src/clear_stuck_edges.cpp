@@ -30,6 +30,12 @@ using EH = TriMesh::EdgeHandle;
 constexpr int kRelaxRings = 2;  // the free vertices within kn + 2 rings of the changed edge are relaxed
 constexpr int kPasses = 3;      // relax-and-project passes before a change is undone
 constexpr int kRounds = 3;      // passes over the edges left outside
+// More edges outside than this share of all edges: nothing is tried. Such a mesh is not near the interval at all, and
+// flips and collapses do not shorten edges much longer than emax: bunny.off (mean edge 2.25) in [1.2, 1.5], against
+// Ineq 5.1, where the loop found no mesh with fewer edges outside than the input, came here with 9135 of 10451
+// outside and kept 73 changes in 216 s. Nearer the interval these changes do their work: the same model and
+// fertility in [1.2, 1.56] come here with 11% outside (2912 of 27366, 3564 of 35526) and leave 16 and 24 (13 s).
+constexpr double kMostOutside = 0.5;
 
 bool outside(const TriMesh& mesh, EH e, double emin, double emax) {
   const double l = geometry::edge_length(mesh, e);
@@ -155,6 +161,18 @@ class StuckEdges {
 }  // namespace
 
 std::size_t clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax) {
+  std::size_t outside_now = 0, edges_now = 0;
+  for (auto e : mesh.edges()) {
+    if (mesh.status(e).deleted()) continue;
+    ++edges_now;
+    if (outside(mesh, e, emin, emax)) ++outside_now;
+  }
+  if (static_cast<double>(outside_now) > kMostOutside * static_cast<double>(edges_now)) {
+    spdlog::info("stuck edges: {} of {} edges outside [{}, {}], more than {:.0f}%: not near the interval, local "
+                 "changes not tried",
+                 outside_now, edges_now, emin, emax, 100 * kMostOutside);
+    return 0;
+  }
   StuckEdges stuck(mesh, target, kn, emin, emax);
   std::size_t cleared = 0;
   for (int round = 0; round < kRounds; ++round) {

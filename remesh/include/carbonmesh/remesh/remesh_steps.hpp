@@ -193,7 +193,9 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
 // Each edge outside [emin, emax] gets local changes of connectivity in turn (a flip of one of the four edges of its
 // triangles or of itself, then its collapse), each followed by a relaxation of the free vertices around it (Error_b
 // with the interval hinge, projected onto `target`) and kept only when the region then has fewer edges outside or
-// faces under 3 degrees and no face turned over; otherwise undone. Returns the changes kept.
+// faces under 3 degrees and no face turned over; otherwise undone. Nothing is tried when more than half the edges are
+// outside (a mesh not near the interval: flips and collapses do not shorten much longer edges). Returns the changes
+// kept.
 std::size_t clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax);
 
 // ---- snap_to_features.cpp ----------------------------------------------------------------------------------
