@@ -512,10 +512,34 @@ TEST(Remesher, StuckEdgesAreNotTriedWhenMostEdgesAreOutside) {
   const TriMesh before = mesh;
   const ProjectionTarget target(before);
   ASSERT_GT(edge_stats(mesh, {1.2, 1.8}).short_edges, mesh.n_edges() / 2);
-  EXPECT_EQ(clear_stuck_edges(mesh, target, 2, 1.2, 1.8), 0u);
+  const StuckEdgesResult r = clear_stuck_edges(mesh, target, 2, 1.2, 1.8);
+  EXPECT_TRUE(r.not_near);
+  EXPECT_EQ(r.tried, 0u);
+  EXPECT_EQ(r.cleared, 0u);
   ASSERT_EQ(mesh.n_vertices(), before.n_vertices());
   ASSERT_EQ(mesh.n_faces(), before.n_faces());
   for (auto v : mesh.vertices()) EXPECT_EQ(mesh.point(v), before.point(v)) << "vertex " << v.idx();
+}
+
+// Where most changes fail the rest would too: the step ends once 200 edges were tried and fewer than one in 10 cleared
+// (a flat disc in [1.2, 1.6], against Ineq 5.1: 1198 edges outside, 39 changes kept in 35 s before). Here every change
+// fails: the relaxation projects onto a sphere 1.5 times larger, which leaves every edge there long.
+TEST(Remesher, StuckEdgesEndWhenFewOfThoseTriedAreCleared) {
+  TriMesh mesh = sphere(4, 1.5);
+  TriMesh far = mesh;
+  for (auto v : far.vertices()) far.set_point(v, 1.5 * far.point(v));
+  const ProjectionTarget target(far);
+  const EdgeStats before = edge_stats(mesh, {1.4, 1.8});
+  ASSERT_GT(before.long_edges + before.short_edges, 400u);
+  ASSERT_LT(before.long_edges + before.short_edges, mesh.n_edges() / 2);
+  const StuckEdgesResult r = clear_stuck_edges(mesh, target, 2, 1.4, 1.8);
+  EXPECT_FALSE(r.not_near);
+  EXPECT_EQ(r.outside, before.long_edges + before.short_edges);
+  EXPECT_EQ(r.cleared, 0u);
+  EXPECT_TRUE(r.few_cleared);
+  EXPECT_EQ(r.tried, 200u);
+  const EdgeStats after = edge_stats(mesh, {1.4, 1.8});
+  EXPECT_EQ(after.long_edges + after.short_edges, r.outside);
 }
 
 // A dense input made into a small structure: mean edge 0.3 against [2, 3]. Section 4.1's intermediate interval,

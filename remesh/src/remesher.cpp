@@ -396,7 +396,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   EdgeStats after_loop = edge_stats(mesh, interval);
   if (after_loop.long_edges + after_loop.short_edges > 0) {
     // Edges neither the optimizer nor the stellar operations reach (a border vertex of valence 3 on a round border).
-    result.stuck_edges_cleared = clear_stuck_edges(mesh, *projection_target, s.kn, s.emin, s.emax);
+    result.stuck_edges_cleared = clear_stuck_edges(mesh, *projection_target, s.kn, s.emin, s.emax).cleared;
     spdlog::debug("stuck edges: {} changes kept", result.stuck_edges_cleared);
     if (result.stuck_edges_cleared > 0) after_loop = edge_stats(mesh, interval);
   }

@@ -193,10 +193,17 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
 // Each edge outside [emin, emax] gets local changes of connectivity in turn (a flip of one of the four edges of its
 // triangles or of itself, then its collapse), each followed by a relaxation of the free vertices around it (Error_b
 // with the interval hinge, projected onto `target`) and kept only when the region then has fewer edges outside or
-// faces under 3 degrees and no face turned over; otherwise undone. Nothing is tried when more than half the edges are
-// outside (a mesh not near the interval: flips and collapses do not shorten much longer edges). Returns the changes
-// kept.
-std::size_t clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax);
+// faces under 3 degrees and no face turned over; otherwise undone. These changes are for a few stuck edges: nothing
+// is tried when more than half the edges are outside (a mesh not near the interval: flips and collapses do not
+// shorten much longer edges), and the step ends once 200 edges were tried and fewer than one in 10 cleared.
+struct StuckEdgesResult {
+  std::size_t outside = 0;   // edges outside [emin, emax] at the start
+  std::size_t tried = 0;     // edges whose changes were tried
+  std::size_t cleared = 0;   // changes kept
+  bool not_near = false;     // more than half the edges outside: nothing tried
+  bool few_cleared = false;  // ended early: fewer than one in 10 of 200 or more tried cleared
+};
+StuckEdgesResult clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax);
 
 // ---- snap_to_features.cpp ----------------------------------------------------------------------------------
 
