@@ -34,7 +34,7 @@ constexpr int kRounds = 3;      // passes over the edges left outside
 // flips and collapses do not shorten edges much longer than emax: bunny.off (mean edge 2.25) in [1.2, 1.5], against
 // Ineq 5.1, where the loop found no mesh with fewer edges outside than the input, came here with 9245 of 10068
 // outside and kept 73 changes in 216 s. Nearer the interval these changes do their work: the same model and
-// fertility in [1.2, 1.56] come here with 11% outside (2912 of 27366, 3564 of 35526) and leave 16 and 24 (13 s).
+// fertility in [1.2, 1.56] come here with 11% outside (2912 of 27366, 3564 of 35526) and leave 16 and 24 (8 s).
 constexpr double kMostOutside = 0.5;
 // Where most changes fail, the rest would fail too, each after relaxations of milliseconds: once kFewestTries edges
 // were tried, the step ends when fewer than one in kTriesPerKept was cleared. A flat disc (20:1, mean edge 2.25) in
