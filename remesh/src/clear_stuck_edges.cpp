@@ -169,16 +169,12 @@ class StuckEdges {
 
 StuckEdgesResult clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax) {
   StuckEdgesResult result;
-  std::size_t edges_now = 0;
-  for (auto e : mesh.edges()) {
-    if (mesh.status(e).deleted()) continue;
-    ++edges_now;
-    if (outside(mesh, e, emin, emax)) ++result.outside;
-  }
-  if (static_cast<double>(result.outside) > kMostOutside * static_cast<double>(edges_now)) {
+  const EdgeStats start = edge_stats(mesh, {emin, emax});
+  result.outside = start.long_edges + start.short_edges;
+  if (static_cast<double>(result.outside) > kMostOutside * static_cast<double>(start.count)) {
     spdlog::info("stuck edges: {} of {} edges outside [{}, {}], more than {:.0f}%: not near the interval, local "
                  "changes not tried",
-                 result.outside, edges_now, emin, emax, 100 * kMostOutside);
+                 result.outside, start.count, emin, emax, 100 * kMostOutside);
     result.not_near = true;
     return result;
   }
