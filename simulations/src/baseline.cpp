@@ -38,7 +38,9 @@ TriMesh load_input(const BaselineSettings& s, std::string& name, bool& hydrogen)
     throw InputError(fmt::format("{}: no input recorded; pass the input mesh with --baseline-input MESH",
                                  summary_file.string()));
   name = summary["input"].get<std::string>();
-  if (starts_with(name, "built-in sphere")) return make_icosphere(SphereShape{});  // what build uses without IN
+  // The built-in sphere of `build` is the geodesic triangulation whose dual is a fullerene already: its baseline
+  // is the default icosphere (1280 triangles, what `carbonmesh shape sphere` writes), a plain triangulation of it.
+  if (starts_with(name, "built-in sphere")) return make_icosphere(SphereShape{});
   std::error_code ec;
   if (!fs::is_regular_file(name, ec))
     throw InputError(fmt::format("{} records input '{}', which is not a file from here; pass it with "

@@ -72,7 +72,7 @@ constexpr double kCoarseAtoms = 50000;  // a coarse level for each factor 4 from
 constexpr int kMaxCoarseLevels = 4;
 
 // The default coarse levels: one per factor 4 from kCoarseAtoms on, so that the coarsest level keeps at least
-// kCoarseAtoms / 4 atoms: 1 from 50000 atoms, 2 from 200000, 3 from 800000.
+// kCoarseAtoms / 4 atoms, at most kMaxCoarseLevels: 1 from 50000 atoms, 2 from 200000, 3 from 800000, 4 from 3200000.
 int default_coarse_levels(double atoms) {
   int levels = 0;
   while (levels < kMaxCoarseLevels && atoms >= kCoarseAtoms) ++levels, atoms /= 4;
@@ -379,8 +379,8 @@ void add_build_command(CLI::App& app, Action& action) {
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case))->default_str("mean-value");
   cmd->add_option("--coarse-levels", opt->coarse_levels,
                   "remesh: remesh at 2^k times the interval first, then halve every edge k times (default: 1 from "
-                  "50000 atoms on, 2 from 200000, 3 from 800000, else 0; the dual optimisation starts from every "
-                  "level, coarsest first)")
+                  "50000 atoms on, 2 from 200000, 3 from 800000, 4 from 3200000, else 0; the dual optimisation "
+                  "starts from every level, coarsest first)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--optimize-iterations", opt->optimize.max_iterations, "dual optimisation: L-BFGS iterations (0: off)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
