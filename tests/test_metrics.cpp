@@ -234,10 +234,42 @@ TEST(Hausdorff, MaximumIncludesTheVertices) {
   EXPECT_NEAR(h.max, height, 1e-12);
   HausdorffSettings area_only{20000, 1};
   area_only.vertices = false;
+  area_only.max_tolerance = 0;  // (the bracketed maximum measures every corner)
   const HausdorffResult a = hausdorff_distance(pyramid, square, area_only);
   EXPECT_FALSE(a.vertices);
   EXPECT_LT(a.forward_max, height - 1e-3);
   EXPECT_EQ(a.forward_rms, h.forward_rms);  // the RMS stays an area mean
+}
+
+TEST(Hausdorff, MaximumInsideAFaceIsBracketed) {
+  // A flat square over an upside-down pyramid on the same base (apex 2 below its centre): the point of the square
+  // farthest from the pyramid is its centre, 10 / sqrt(29) from the four faces, and the square is triangulated around
+  // an extra vertex so that the centre lies inside a face, on no edge: neither a vertex nor an edge midpoint finds it.
+  TriMesh square, pyramid;
+  std::vector<TriMesh::VertexHandle> s, p;
+  for (const Vec3& c : {Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(10, 10, 0), Vec3(0, 10, 0)}) {
+    s.push_back(square.add_vertex(c));
+    p.push_back(pyramid.add_vertex(c));
+  }
+  const auto extra = square.add_vertex(Vec3(1, 6, 0));
+  const auto apex = pyramid.add_vertex(Vec3(5, 5, -2));
+  for (std::size_t i = 0; i < 4; ++i) {
+    square.add_face(s[i], s[(i + 1) % 4], extra);
+    pyramid.add_face(p[(i + 1) % 4], p[i], apex);
+  }
+  const double centre = 10 / std::sqrt(29.0);
+  HausdorffSettings settings{2000, 1};
+  const HausdorffResult h = hausdorff_distance(square, pyramid, settings);
+  EXPECT_TRUE(h.bracketed);
+  EXPECT_NEAR(h.forward_max, centre, settings.max_tolerance);
+  EXPECT_GE(h.forward_max_bound, centre - 1e-12);  // the bound is an upper bound of the true maximum
+  EXPECT_LE(h.forward_max_bound - h.forward_max, settings.max_tolerance);
+  EXPECT_NEAR(h.backward_max, 2.0, 1e-12);  // the apex, 2 below the square
+  EXPECT_NEAR(h.max, 2.0, 1e-12);
+  settings.max_tolerance = 0;  // the samples and the vertices only
+  const HausdorffResult sampled = hausdorff_distance(square, pyramid, settings);
+  EXPECT_FALSE(sampled.bracketed);
+  EXPECT_LT(sampled.forward_max, centre - 1e-3);
 }
 
 TEST(Hausdorff, ShiftedCopyIsAtTheShift) {

@@ -2,10 +2,11 @@
 
 #include "carbonmesh/remesh/triangle_tree.hpp"
 
-
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <queue>
 #include <random>
 #include <vector>
 
@@ -62,6 +63,101 @@ std::vector<Point> face_vertices(const TriMesh& mesh) {
   return points;
 }
 
+// What the branch and bound knows of the distance to the tree's surface over one (sub-)triangle.
+struct Bounds {
+  double lower = 0;  // attained: at a corner or the centroid
+  double upper = 0;  // no point of the triangle is farther
+};
+
+// The distance to the surface is at most that to any one of its triangles t, which is convex (the distance to a convex
+// set), so over the piece at most its largest value at the piece's corners: t is taken among the triangles nearest
+// the centroid and the corners. The distance is also 1-Lipschitz: at most that of the centroid plus the farthest
+// corner's distance from it.
+Bounds bounds(const std::array<Point, 3>& piece, const Tree& tree) {
+  const Point g = CGAL::centroid(piece[0], piece[1], piece[2]);
+  const auto at_g = tree.closest_point_and_primitive(g);
+  const double dg = std::sqrt(CGAL::squared_distance(g, at_g.first));
+  std::array<const Triangle*, 4> nearest{&*at_g.second, nullptr, nullptr, nullptr};
+  Bounds b{dg, 0};
+  double reach = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto at_k = tree.closest_point_and_primitive(piece[k], at_g);
+    b.lower = std::max(b.lower, std::sqrt(CGAL::squared_distance(piece[k], at_k.first)));
+    nearest[k + 1] = &*at_k.second;
+    reach = std::max(reach, std::sqrt(CGAL::squared_distance(g, piece[k])));
+  }
+  b.upper = dg + reach;
+  for (const Triangle* t : nearest) {
+    double farthest2 = 0;
+    for (const Point& p : piece) farthest2 = std::max(farthest2, CGAL::squared_distance(p, *t));
+    b.upper = std::min(b.upper, std::sqrt(farthest2));
+  }
+  b.upper = std::max(b.upper, b.lower);
+  return b;
+}
+
+// The largest distance of the triangles' points to the tree's surface, bracketed: pieces (the faces first) whose
+// upper bound exceeds the largest distance found so far by more than `tolerance` are split into four at their edge
+// midpoints, those with the highest bounds first, kBatch at a time (each batch's pieces on every thread; the order is
+// fixed by the bounds and the order of creation, so the result is the same for any thread count), until none is left
+// or `max_pieces` more than the faces have been measured (a surface lying on the other one, where no bound falls to 0 across the other's
+// edges: then the bracket is what the pieces measured give).
+std::pair<double, double> farthest_point(const Triangles& triangles, const Tree& tree, double tolerance,
+                                         std::size_t max_pieces) {
+  constexpr std::size_t kBatch = 1024;
+  struct Open {
+    double upper;
+    std::size_t id;  // order of creation (ties)
+    std::array<Point, 3> piece;
+    bool operator<(const Open& o) const { return upper != o.upper ? upper < o.upper : id > o.id; }
+  };
+  std::vector<std::array<Point, 3>> pieces;
+  pieces.reserve(triangles.size());
+  for (const Triangle& t : triangles) pieces.push_back({t[0], t[1], t[2]});
+  std::vector<Bounds> b;
+  auto measure = [&] {
+    b.resize(pieces.size());
+    const long n = static_cast<long>(pieces.size());
+#pragma omp parallel for schedule(dynamic, 64)
+    for (long i = 0; i < n; ++i) b[static_cast<std::size_t>(i)] = bounds(pieces[static_cast<std::size_t>(i)], tree);
+  };
+  measure();
+  double lower = 0, upper = 0;  // upper: the largest bound of the pieces settled (not split further)
+  for (const Bounds& x : b) lower = std::max(lower, x.lower);
+  std::priority_queue<Open> open;
+  std::size_t created = 0, measured = pieces.size();
+  auto settle_or_open = [&] {
+    for (std::size_t i = 0; i < pieces.size(); ++i, ++created) {
+      if (b[i].upper <= lower + tolerance) upper = std::max(upper, b[i].upper);
+      else open.push({b[i].upper, created, pieces[i]});
+    }
+  };
+  settle_or_open();
+  while (!open.empty() && measured < triangles.size() + max_pieces) {
+    pieces.clear();
+    while (!open.empty() && pieces.size() < 4 * kBatch) {
+      const Open top = open.top();
+      open.pop();
+      if (top.upper <= lower + tolerance) {
+        upper = std::max(upper, top.upper);
+        continue;
+      }
+      const auto& [p, q, r] = top.piece;
+      const Point pq = CGAL::midpoint(p, q), qr = CGAL::midpoint(q, r), rp = CGAL::midpoint(r, p);
+      pieces.push_back({p, pq, rp});
+      pieces.push_back({pq, q, qr});
+      pieces.push_back({rp, qr, r});
+      pieces.push_back({pq, qr, rp});
+    }
+    measure();
+    measured += pieces.size();
+    for (const Bounds& x : b) lower = std::max(lower, x.lower);
+    settle_or_open();
+  }
+  for (; !open.empty(); open.pop()) upper = std::max(upper, open.top().upper);  // (the budget ran out)
+  return {lower, std::max(lower, upper)};
+}
+
 }  // namespace
 
 HausdorffResult hausdorff_distance(const TriMesh& mesh, const TriMesh& reference, const HausdorffSettings& settings) {
@@ -77,10 +173,21 @@ HausdorffResult hausdorff_distance(const TriMesh& mesh, const TriMesh& reference
   const auto samples_b = sample(b, settings.samples, settings.seed + 1);
   std::tie(r.forward_max, r.forward_rms) = one_sided(samples_a, tree_b);
   std::tie(r.backward_max, r.backward_rms) = one_sided(samples_b, tree_a);
-  if (settings.vertices) {
+  if (settings.vertices && !(settings.max_tolerance > 0)) {  // (else every corner is measured below)
     r.forward_max = std::max(r.forward_max, one_sided(face_vertices(mesh), tree_b).first);
     r.backward_max = std::max(r.backward_max, one_sided(face_vertices(reference), tree_a).first);
     r.vertices = true;
+  }
+  if (settings.max_tolerance > 0) {
+    const auto [forward, forward_bound] = farthest_point(a, tree_b, settings.max_tolerance, settings.max_pieces);
+    const auto [backward, backward_bound] = farthest_point(b, tree_a, settings.max_tolerance, settings.max_pieces);
+    r.forward_max = std::max(r.forward_max, forward);  // (points of the surface both: neither is above the bound)
+    r.backward_max = std::max(r.backward_max, backward);
+    r.forward_max_bound = std::max(r.forward_max, forward_bound);
+    r.backward_max_bound = std::max(r.backward_max, backward_bound);
+    r.max_bound = std::max(r.forward_max_bound, r.backward_max_bound);
+    r.bracketed = true;
+    r.vertices = true;  // (every corner is measured)
   }
   r.max = std::max(r.forward_max, r.backward_max);
   r.rms = std::max(r.forward_rms, r.backward_rms);
@@ -96,7 +203,11 @@ nlohmann::json to_json(const HausdorffResult& h) {
           {"backward_max", h.backward_max},
           {"backward_rms", h.backward_rms},
           {"samples_per_side", h.samples_per_side},
-          {"vertices", h.vertices}};
+          {"vertices", h.vertices},
+          {"bracketed", h.bracketed},
+          {"max_bound", h.max_bound},
+          {"forward_max_bound", h.forward_max_bound},
+          {"backward_max_bound", h.backward_max_bound}};
 }
 
 }  // namespace carbonmesh
