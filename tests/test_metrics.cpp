@@ -264,6 +264,8 @@ TEST(Hausdorff, MaximumInsideAFaceIsBracketed) {
   EXPECT_NEAR(h.forward_max, centre, settings.max_tolerance);
   EXPECT_GE(h.forward_max_bound, centre - 1e-12);  // the bound is an upper bound of the true maximum
   EXPECT_LE(h.forward_max_bound - h.forward_max, settings.max_tolerance);
+  EXPECT_LT((Vec3(h.forward_max_point[0], h.forward_max_point[1], h.forward_max_point[2]) - Vec3(5, 5, 0)).norm(),
+            0.01);
   EXPECT_NEAR(h.backward_max, 2.0, 1e-12);  // the apex, 2 below the square
   EXPECT_NEAR(h.max, 2.0, 1e-12);
   settings.max_tolerance = 0;  // the samples and the vertices only

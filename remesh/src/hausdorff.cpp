@@ -67,6 +67,7 @@ std::vector<Point> face_vertices(const TriMesh& mesh) {
 struct Bounds {
   double lower = 0;  // attained: at a corner or the centroid
   double upper = 0;  // no point of the triangle is farther
+  Point at;          // where `lower` is attained
 };
 
 // The distance to the surface is at most that to any one of its triangles t, which is convex (the distance to a convex
@@ -78,11 +79,12 @@ Bounds bounds(const std::array<Point, 3>& piece, const Tree& tree) {
   const auto at_g = tree.closest_point_and_primitive(g);
   const double dg = std::sqrt(CGAL::squared_distance(g, at_g.first));
   std::array<const Triangle*, 4> nearest{&*at_g.second, nullptr, nullptr, nullptr};
-  Bounds b{dg, 0};
+  Bounds b{dg, 0, g};
   double reach = 0;
   for (std::size_t k = 0; k < 3; ++k) {
     const auto at_k = tree.closest_point_and_primitive(piece[k], at_g);
-    b.lower = std::max(b.lower, std::sqrt(CGAL::squared_distance(piece[k], at_k.first)));
+    const double dk = std::sqrt(CGAL::squared_distance(piece[k], at_k.first));
+    if (dk > b.lower) b.lower = dk, b.at = piece[k];
     nearest[k + 1] = &*at_k.second;
     reach = std::max(reach, std::sqrt(CGAL::squared_distance(g, piece[k])));
   }
@@ -102,8 +104,12 @@ Bounds bounds(const std::array<Point, 3>& piece, const Tree& tree) {
 // fixed by the bounds and the order of creation, so the result is the same for any thread count), until none is left
 // or `max_pieces` more than the faces have been measured (a surface lying on the other one, where no bound falls to 0 across the other's
 // edges: then the bracket is what the pieces measured give).
-std::pair<double, double> farthest_point(const Triangles& triangles, const Tree& tree, double tolerance,
-                                         std::size_t max_pieces) {
+struct Farthest {
+  double distance = 0, bound = 0;
+  Point at;
+};
+
+Farthest farthest_point(const Triangles& triangles, const Tree& tree, double tolerance, std::size_t max_pieces) {
   constexpr std::size_t kBatch = 1024;
   struct Open {
     double upper;
@@ -123,7 +129,12 @@ std::pair<double, double> farthest_point(const Triangles& triangles, const Tree&
   };
   measure();
   double lower = 0, upper = 0;  // upper: the largest bound of the pieces settled (not split further)
-  for (const Bounds& x : b) lower = std::max(lower, x.lower);
+  Point at = triangles.empty() ? Point(0, 0, 0) : triangles.front()[0];
+  auto raise = [&] {  // lower to the farthest of the pieces just measured (the first of equal ones)
+    for (const Bounds& x : b)
+      if (x.lower > lower) lower = x.lower, at = x.at;
+  };
+  raise();
   std::priority_queue<Open> open;
   std::size_t created = 0, measured = pieces.size();
   auto settle_or_open = [&] {
@@ -151,11 +162,11 @@ std::pair<double, double> farthest_point(const Triangles& triangles, const Tree&
     }
     measure();
     measured += pieces.size();
-    for (const Bounds& x : b) lower = std::max(lower, x.lower);
+    raise();
     settle_or_open();
   }
   for (; !open.empty(); open.pop()) upper = std::max(upper, open.top().upper);  // (the budget ran out)
-  return {lower, std::max(lower, upper)};
+  return {lower, std::max(lower, upper), at};
 }
 
 }  // namespace
@@ -179,12 +190,16 @@ HausdorffResult hausdorff_distance(const TriMesh& mesh, const TriMesh& reference
     r.vertices = true;
   }
   if (settings.max_tolerance > 0) {
-    const auto [forward, forward_bound] = farthest_point(a, tree_b, settings.max_tolerance, settings.max_pieces);
-    const auto [backward, backward_bound] = farthest_point(b, tree_a, settings.max_tolerance, settings.max_pieces);
-    r.forward_max = std::max(r.forward_max, forward);  // (points of the surface both: neither is above the bound)
-    r.backward_max = std::max(r.backward_max, backward);
-    r.forward_max_bound = std::max(r.forward_max, forward_bound);
-    r.backward_max_bound = std::max(r.backward_max, backward_bound);
+    auto budget = [&](const Triangles& t) { return std::max(settings.max_pieces, settings.pieces_per_face * t.size()); };
+    const Farthest forward = farthest_point(a, tree_b, settings.max_tolerance, budget(a));
+    const Farthest backward = farthest_point(b, tree_a, settings.max_tolerance, budget(b));
+    // (A sample is farther than the point found by at most the tolerance, unless the budget ran out.)
+    r.forward_max = std::max(r.forward_max, forward.distance);
+    r.backward_max = std::max(r.backward_max, backward.distance);
+    r.forward_max_bound = std::max(r.forward_max, forward.bound);
+    r.backward_max_bound = std::max(r.backward_max, backward.bound);
+    r.forward_max_point = {forward.at.x(), forward.at.y(), forward.at.z()};
+    r.backward_max_point = {backward.at.x(), backward.at.y(), backward.at.z()};
     r.max_bound = std::max(r.forward_max_bound, r.backward_max_bound);
     r.bracketed = true;
     r.vertices = true;  // (every corner is measured)
@@ -205,6 +220,8 @@ nlohmann::json to_json(const HausdorffResult& h) {
           {"samples_per_side", h.samples_per_side},
           {"vertices", h.vertices},
           {"bracketed", h.bracketed},
+          {"forward_max_point", h.forward_max_point},
+          {"backward_max_point", h.backward_max_point},
           {"max_bound", h.max_bound},
           {"forward_max_bound", h.forward_max_bound},
           {"backward_max_bound", h.backward_max_bound}};

@@ -2,6 +2,7 @@
 // Symmetric Hausdorff distance against CGAL AABB trees: the RMS values by dense area-uniform surface sampling, the
 // maxima by a branch and bound over every triangle that brackets them within a tolerance (or, with the tolerance 0,
 // from the samples and the vertices).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -23,9 +24,11 @@ struct HausdorffSettings {
   // function, so at most its largest value at the corners; and it grows by no more than the distance moved). 0: the
   // maxima of the samples and the vertices, which can miss a farthest point inside a face by a few percent.
   double max_tolerance = 1e-4;
-  // At most this many pieces measured a side besides the faces (then the bracket is wider: a surface lying on the
-  // other one, where the bounds fall to 0 only at pieces smaller than the tolerance).
+  // At most max(max_pieces, pieces_per_face x faces) pieces measured a side besides the faces (then the bracket is
+  // wider: a surface lying on the other one, where the bounds fall to 0 only at pieces smaller than the tolerance).
+  // A coarse input against its remesh needs 2-3 splits of its faces (armadillo: 16-64 pieces a face).
   std::size_t max_pieces = 400000;
+  std::size_t pieces_per_face = 64;
 };
 
 struct HausdorffResult {
@@ -35,6 +38,9 @@ struct HausdorffResult {
   // With max_tolerance > 0: each maximum is attained at a point found (a lower bound), and the true one is at most
   // its bound (the sup over the surface, certified); the bound is within max_tolerance unless max_pieces ran out.
   double forward_max_bound = 0, backward_max_bound = 0, max_bound = 0;
+  // The farthest points the bracketing found, of `mesh` (forward) and of `reference` (backward): within the
+  // tolerance of the maxima unless max_pieces ran out.
+  std::array<double, 3> forward_max_point{}, backward_max_point{};
   bool bracketed = false;
   double rms = 0;  // symmetric: the larger of the two RMS values
   std::size_t samples_per_side = 0;  // area samples
