@@ -98,17 +98,17 @@ Bounds bounds(const std::array<Point, 3>& piece, const Tree& tree) {
   return b;
 }
 
+struct Farthest {
+  double distance = 0, bound = 0;  // attained at `at`; no point is farther than `bound`
+  Point at;
+};
+
 // The largest distance of the triangles' points to the tree's surface, bracketed: pieces (the faces first) whose
 // upper bound exceeds the largest distance found so far by more than `tolerance` are split into four at their edge
 // midpoints, those with the highest bounds first, kBatch at a time (each batch's pieces on every thread; the order is
 // fixed by the bounds and the order of creation, so the result is the same for any thread count), until none is left
-// or `max_pieces` more than the faces have been measured (a surface lying on the other one, where no bound falls to 0 across the other's
-// edges: then the bracket is what the pieces measured give).
-struct Farthest {
-  double distance = 0, bound = 0;
-  Point at;
-};
-
+// or `max_pieces` more than the faces have been measured (a surface lying on the other one, where no bound falls to 0
+// across the other's edges: then the bracket is what the pieces measured give).
 Farthest farthest_point(const Triangles& triangles, const Tree& tree, double tolerance, std::size_t max_pieces) {
   constexpr std::size_t kBatch = 1024;
   struct Open {
@@ -190,7 +190,9 @@ HausdorffResult hausdorff_distance(const TriMesh& mesh, const TriMesh& reference
     r.vertices = true;
   }
   if (settings.max_tolerance > 0) {
-    auto budget = [&](const Triangles& t) { return std::max(settings.max_pieces, settings.pieces_per_face * t.size()); };
+    auto budget = [&](const Triangles& t) {
+      return std::max(settings.max_pieces, settings.pieces_per_face * t.size());
+    };
     const Farthest forward = farthest_point(a, tree_b, settings.max_tolerance, budget(a));
     const Farthest backward = farthest_point(b, tree_a, settings.max_tolerance, budget(b));
     // (A sample is farther than the point found by at most the tolerance, unless the budget ran out.)
