@@ -27,8 +27,9 @@ void add_stats_command(CLI::App& app, Action& action) {
   cmd->add_option("--emax", opt->emax, "upper bound of the edge interval, mesh units (edges longer are 'long'; default: none)");
   cmd->add_option("--ref", opt->ref, "reference mesh for the symmetric Hausdorff distance, in mesh units (default: none, no distance)");
   cmd->add_option("--samples", opt->samples,
-                  "Hausdorff samples per surface for the RMS (area-uniform; the max is bracketed within 1e-4 over "
-                  "every point of both surfaces)")
+                  fmt::format("Hausdorff samples per surface for the RMS (area-uniform; the max is bracketed within {:g} "
+                              "over every point of both surfaces)",
+                              HausdorffSettings{}.max_tolerance))
       ->default_val(200000)
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--json", opt->json, "one JSON object instead of text");
