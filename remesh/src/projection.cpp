@@ -10,30 +10,10 @@
 
 #include "carbonmesh/remesh/point_grid.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "remesh_geometry.hpp"
 
 namespace carbonmesh {
 namespace {
-
-// Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5).
-Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = OpenMesh::dot(ab, ap), d2 = OpenMesh::dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = OpenMesh::dot(ab, bp), d4 = OpenMesh::dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = OpenMesh::dot(ab, cp), d6 = OpenMesh::dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 }  // namespace
 
@@ -182,7 +162,7 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   for (std::size_t j = 0; j < neighbors.size(); ++j) neighbor_lengths[j] = (v - neighbors[j]).norm();
   auto closest = [&](int f) {
     const auto& tri = t.faces[static_cast<std::size_t>(f)];
-    return closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
+    return geometry::closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
                                      t.points[static_cast<std::size_t>(tri[1])],
                                      t.points[static_cast<std::size_t>(tri[2])]);
   };

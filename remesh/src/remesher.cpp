@@ -150,7 +150,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // A coarse level converges within kCoarseIterations where it is a good start (fertility at 10^6 atoms: 16);
     // one that has not by then is given up.
     coarse.iterations = std::min(s.iterations, kCoarseIterations);
-    coarse.fit_surface = coarse.snap_features = coarse.flip_toward_input = coarse.measure_cut_off = false;
+    coarse.fit_surface = coarse.minimax_fit = coarse.snap_features = coarse.flip_toward_input = false;
+    coarse.measure_cut_off = false;
     coarse.on_iteration = [&](const IterationLog& l) {
       IterationLog shifted = l;
       ++shifted.level;
@@ -456,6 +457,20 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       spdlog::debug("surface fit: RMS distance {:.4f} -> {:.4f}, {} offset halvings", fit.rms_before,
                     fit.rms_after, fit.limited);
     }
+    if (s.minimax_fit) {
+      const double t0 = seconds();
+      MinimaxFitSettings minimax_settings;
+      minimax_settings.tolerance = s.snap_tolerance * s.emin;
+      const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;  // they stay, as in the fit
+      const MinimaxFitResult minimax =
+          minimax_fit(mesh, input ? *input : *target, s.emin, s.emax, minimax_settings, snapped);
+      result.minimax_fitted = true;
+      result.minimax_max_before = minimax.max_before;
+      result.minimax_max_after = minimax.max_after;
+      result.minimax_moves = minimax.moves;
+      spdlog::debug("minimax fit: largest sampled distance {:.4f} -> {:.4f}, {} moves at {} spots, {:.3f}s",
+                    minimax.max_before, minimax.max_after, minimax.moves, minimax.spots, seconds() - t0);
+    }
   }
   // The topology guard: a final mesh of another surface type is replaced by the best valid one.
   if (const std::optional<Topology> changed = enforce_surface_type(mesh, best)) {
@@ -554,6 +569,10 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"fitted", r.fitted},
           {"fit_rms_before", r.fit_rms_before},
           {"fit_rms_after", r.fit_rms_after},
+          {"minimax_fitted", r.minimax_fitted},
+          {"minimax_max_before", r.minimax_max_before},
+          {"minimax_max_after", r.minimax_max_after},
+          {"minimax_moves", r.minimax_moves},
           {"snapped", r.snapped},
           {"snapped_vertices", r.snapped_vertices},
           {"inserted_vertices", r.inserted_vertices},

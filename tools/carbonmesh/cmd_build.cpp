@@ -179,6 +179,7 @@ int run_build(BuildOptions& o) {
   // The dual optimisation puts the atoms on the input surface itself: the remesh's surface fit would only
   // move the starting points, at the cost of closest-point queries on every face.
   o.remesh.fit_surface = false;
+  o.remesh.minimax_fit = false;  // likewise
   o.remesh.snap_features = false;  // likewise, and its distance trees over the whole mesh cost most at 1M atoms
   o.remesh.flip_toward_input = false;  // likewise (and a flip may cost a hexagon)
   o.remesh.emax = scaled.emax;

@@ -33,7 +33,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
     int iterations = 150, kl = 2, kn = 2, p = 0, coarse_levels = 0, stall_limit = RemeshSettings{}.stall_limit;
     double l = 0.5;
     ParametrizationWeights weights = ParametrizationWeights::MeanValue;
-    bool json = false, repair = false, no_fit = false, no_snap = false, no_flips = false;
+    bool json = false, repair = false, no_fit = false, no_minimax = false, no_snap = false, no_flips = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("remesh", "remesh so that every edge length lies in [emin, emax] (Algorithm 1)");
@@ -62,6 +62,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
       ->default_val(0)
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-fit", opt->no_fit, "skip the final least-squares fit to the input (every vertex stays on the input, as in the dissertation; default: fit)");
+  cmd->add_flag("--no-minimax", opt->no_minimax, "skip moving the vertices where the remeshed surface and the input are farthest apart so that the largest distance falls (default: move)");
   cmd->add_flag("--no-snap", opt->no_snap, "skip moving vertices onto input points the remeshed surface cuts off (ear rims, tips, grooves; default: snap)");
   cmd->add_flag("--no-flips", opt->no_flips, "skip flipping edges whose faces bridge a groove or cut a ridge of the input where the other diagonal follows it (default: flip)");
   cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
@@ -92,6 +93,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
       settings.stall_limit = opt->stall_limit;
       settings.weights = opt->weights;
       settings.fit_surface = !opt->no_fit;
+      settings.minimax_fit = !opt->no_minimax;
       settings.snap_features = !opt->no_snap;
       settings.flip_toward_input = !opt->no_flips;
       settings.coarse_levels = opt->coarse_levels;
@@ -152,6 +154,9 @@ void add_remesh_command(CLI::App& app, Action& action) {
         if (result.fitted)
           std::cout << fmt::format("surface fit: RMS distance to the input {:.4f} -> {:.4f}\n", result.fit_rms_before,
                                    result.fit_rms_after);
+        if (result.minimax_fitted)
+          std::cout << fmt::format("minimax fit: largest sampled distance to the input {:.4f} -> {:.4f} ({} moves)\n",
+                                   result.minimax_max_before, result.minimax_max_after, result.minimax_moves);
       }
       if (!result.converged)
         spdlog::warn("{} long and {} short edges remain outside [{}, {}]", result.long_edges, result.short_edges,

@@ -326,4 +326,25 @@ struct SurfaceFitResult {
 SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
                                 const SurfaceFitSettings& settings = {}, const std::vector<char>* fixed = nullptr);
 
+// ---- minimax_fit.cpp: the largest distance to the input lowered where it is set (after the surface fit) ---------
+
+struct MinimaxFitSettings {
+  int rounds = 1;         // scans of both surfaces, each followed by the search around its spots
+  double share = 0.8;     // spots: farther than this share of the largest sampled distance ...
+  double tolerance = 0;   // ... and than this (absolute)
+};
+
+struct MinimaxFitResult {
+  double max_before = 0, max_after = 0;  // the largest sampled distance between the surfaces, before and after
+  std::size_t spots = 0;                 // regions searched
+  std::size_t moves = 0;                 // vertex moves kept
+};
+
+// Moves the vertices around the spots where the remeshed surface and `surface` are farthest apart (either way,
+// sampled; spots farther than emax are left) so that the largest distance over each spot's region falls; edges
+// inside [emin, emax] before stay inside. Border vertices, and those with (*fixed)[index] != 0, stay where they are.
+// The output does not depend on the thread count.
+MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
+                             const MinimaxFitSettings& settings = {}, const std::vector<char>* fixed = nullptr);
+
 }  // namespace carbonmesh

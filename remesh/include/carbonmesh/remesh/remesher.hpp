@@ -48,6 +48,9 @@ struct RemeshSettings {
   // (fit_to_surface in remesh_steps.hpp): about half the Hausdorff distance, every edge kept inside.
   // Off: every vertex stays on the input, as in the dissertation.
   bool fit_surface = true;
+  // After the fit, move the vertices around the spots where the two surfaces are farthest apart so that the
+  // largest distance there falls (minimax_fit in remesh_steps.hpp), every edge kept inside.
+  bool minimax_fit = true;
   // After convergence, move vertices onto input points farther than snap_tolerance * emin from the remeshed
   // surface (snap_to_features in remesh_steps.hpp: ear rims, cone tips, grooves), every edge kept inside.
   bool snap_features = true;
@@ -110,6 +113,9 @@ struct RemeshResult {
   std::size_t rejected_best = 0;  // iterations whose better mesh was refused as best for a changed surface type
   bool fitted = false;            // fit_to_surface ran (settings.fit_surface)
   double fit_rms_before = 0, fit_rms_after = 0;  // its area-weighted RMS distance to the input, before and after
+  bool minimax_fitted = false;  // minimax_fit ran (settings.minimax_fit)
+  double minimax_max_before = 0, minimax_max_after = 0;  // the largest sampled distance, before and after
+  std::size_t minimax_moves = 0;                         // vertex moves it kept
   bool snapped = false;              // snap_to_features ran (settings.snap_features)
   std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
   std::size_t inserted_vertices = 0;  // vertices it added at input vertices no move reached (a split face each)

@@ -1,0 +1,537 @@
+// Vertices moved to lower the largest distance between the remeshed surface and the input (after the surface fit;
+// not in the dissertation).
+//
+// The least-squares fit (surface_fit.cpp) lowers the mean of the squared distance; the largest distance is set at a
+// few spots: faces bridging a groove of the input or cutting across a ridge, where the fit trades one side against
+// the other in the mean. A scan samples both surfaces (remeshed faces at their centroid and edge midpoints, input
+// corners and face centroids); spots farther than `tolerance` and than `share` of the largest distance are taken
+// farthest first (those farther than an edge are left: a part of the input was cut off there, which small moves do
+// not mend). Around each spot, the corners of its face and the far corners of its three neighbours move one at a
+// time, along their normal and two tangents, in a pattern search (the step halved when no move gains) over the
+// region: the faces at those vertices. A move is kept if every edge at the vertex stays in [emin, emax], no face at
+// it gets an angle under 3 degrees or turns by more than ~72 degrees from its start, and the region's largest
+// distance falls, or stays and the squared excess of its samples over 0.7 of it falls (so that two balanced maxima
+// can both come down). The distances are those of 15 samples of each region face to the input faces near it and of
+// 15 samples of each input face under the region to the region's faces (the samples nearer the region than the
+// ring of faces around it; the others are the ring's, which no move changes). The result is kept only if the
+// largest distance over 153 samples a face fell too (else the search may only have moved it between its samples:
+// it runs again with 45 samples a face, then gives up). Spots run on every thread, each starting once every
+// earlier spot near it has finished (OrderedSchedule): the output does not depend on the thread count.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "carbonmesh/remesh/remesh_steps.hpp"
+#include "carbonmesh/remesh/triangle_tree.hpp"
+#include "ordered_schedule.hpp"
+#include "remesh_geometry.hpp"
+#include "threads.hpp"
+
+namespace carbonmesh {
+namespace {
+
+using namespace triangle_tree;
+
+constexpr int kGrid = 4;    // a face's samples in the search: the barycentric grid of step 1/4 (15 points), or 1/8
+constexpr int kCheck = 16;  // and in the check of a region's result (153 points): the search may only have moved
+                            // the largest distance between its samples
+constexpr double kGain = 1e-6;  // a move must lower the region's largest distance by this fraction at least ...
+constexpr double kExcessGain = 1e-2;  // ... or keep it and lower the excess over kLevel of it by this fraction
+constexpr double kLevel = 0.7;
+constexpr double kFirstStep = 0.1, kLastStep = 0.02;  // the search's steps, as fractions of emin
+constexpr int kSweeps = 24;                            // at most this many sweeps over the movable vertices
+
+Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+
+void dense_samples(const Vec3& a, const Vec3& b, const Vec3& c, int grid, std::vector<Vec3>& out) {
+  for (int i = 0; i <= grid; ++i)
+    for (int j = 0; j <= grid - i; ++j) {
+      const double u = static_cast<double>(i) / grid, v = static_cast<double>(j) / grid;
+      out.push_back((1 - u - v) * a + u * b + v * c);
+    }
+}
+
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return (geometry::closest_point_on_triangle(p, a, b, c) - p).norm();
+}
+
+// A triangle with the ball around it: a point farther from the centre than its distance bound plus the radius
+// cannot be nearer than the bound, and its exact distance is not needed.
+struct BoundedTriangle {
+  Vec3 a, b, c, centre;
+  double radius = 0;
+};
+
+BoundedTriangle bounded(const TriMesh& mesh, TriMesh::FaceHandle f) {
+  BoundedTriangle t;
+  geometry::face_points(mesh, f, t.a, t.b, t.c);
+  t.centre = (t.a + t.b + t.c) / 3.0;
+  t.radius = std::max({(t.a - t.centre).norm(), (t.b - t.centre).norm(), (t.c - t.centre).norm()});
+  return t;
+}
+
+// The distance of y to the nearest of the triangles, or `bound` if none is nearer; `hint` (a position in the list,
+// or past its end) is tried first and left at the nearest.
+double nearest_distance(const Vec3& y, const std::vector<BoundedTriangle>& triangles, double bound,
+                        std::size_t& hint) {
+  if (hint < triangles.size()) {
+    const auto& t = triangles[hint];
+    bound = std::min(bound, point_triangle_distance(y, t.a, t.b, t.c));
+  }
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
+    const double reach = bound + t.radius;
+    if (i == hint || (y - t.centre).sqrnorm() >= reach * reach) continue;
+    const double d = point_triangle_distance(y, t.a, t.b, t.c);
+    if (d < bound) {
+      bound = d;
+      hint = i;
+    }
+  }
+  return bound;
+}
+
+double nearest_distance(const Vec3& y, const std::vector<BoundedTriangle>& triangles, double bound) {
+  std::size_t hint = triangles.size();
+  return nearest_distance(y, triangles, bound, hint);
+}
+
+std::vector<BoundedTriangle> bounded(const TriMesh& mesh, const std::vector<TriMesh::FaceHandle>& faces) {
+  std::vector<BoundedTriangle> out;
+  out.reserve(faces.size());
+  for (auto f : faces) out.push_back(bounded(mesh, f));
+  return out;
+}
+
+std::vector<TriMesh::FaceHandle> live_faces(const TriMesh& mesh) {
+  std::vector<TriMesh::FaceHandle> faces;
+  faces.reserve(mesh.n_faces());
+  for (auto f : mesh.faces())
+    if (!mesh.status(f).deleted()) faces.push_back(f);
+  return faces;
+}
+
+// The distances of one scan of both surfaces, and the remeshed faces nearest each input face's samples.
+struct Scan {
+  double max = 0;
+  std::vector<std::pair<double, int>> spots;  // (-distance, remeshed face index), farthest first
+  std::vector<std::vector<int>> input_faces;  // by remeshed face index: the input faces with a sample nearest it
+};
+
+Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, double share, double tolerance,
+          double reach) {
+  const auto faces = live_faces(mesh);
+  const int nf = static_cast<int>(faces.size());
+  // Remeshed faces: centroid and edge midpoints, to the input.
+  std::vector<double> forward(faces.size(), 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int i = 0; i < nf; ++i) {
+    Vec3 a, b, c;
+    geometry::face_points(mesh, faces[static_cast<std::size_t>(i)], a, b, c);
+    double worst = 0;
+    for (const Vec3& p : {(a + b + c) / 3.0, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)})
+      worst = std::max(worst, input_tree.squared_distance(to_point(p)));
+    forward[static_cast<std::size_t>(i)] = std::sqrt(worst);
+  }
+  // Input corners and face centroids, to the remeshed surface (and the remeshed face nearest each).
+  const Triangles triangles = triangles_of(mesh);
+  Tree tree(triangles.begin(), triangles.end());
+  tree.build();
+  tree.accelerate_distance_queries();
+  const int nv = static_cast<int>(input.n_vertices()), ni = static_cast<int>(input.n_faces());
+  std::vector<double> backward(static_cast<std::size_t>(nv + ni), 0);
+  std::vector<int> nearest(static_cast<std::size_t>(nv + ni), -1);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int k = 0; k < nv + ni; ++k) {
+    Vec3 p;
+    if (k < nv) {
+      const TriMesh::VertexHandle v(k);
+      if (input.status(v).deleted() || input.is_isolated(v)) continue;
+      p = input.point(v);
+    } else {
+      const TriMesh::FaceHandle f(k - nv);
+      if (input.status(f).deleted()) continue;
+      Vec3 a, b, c;
+      geometry::face_points(input, f, a, b, c);
+      p = (a + b + c) / 3.0;
+    }
+    const auto hit = tree.closest_point_and_primitive(to_point(p));
+    backward[static_cast<std::size_t>(k)] = (to_vec(hit.first) - p).norm();
+    nearest[static_cast<std::size_t>(k)] = faces[static_cast<std::size_t>(hit.second - triangles.begin())].idx();
+  }
+  Scan result;
+  // Spots farther than `reach` are out of the search's reach (a part of the input cut off, an input border the
+  // remesh does not follow): the share is taken of the largest distance within it.
+  double within = 0;
+  for (const auto* distances : {&forward, &backward})
+    for (const double d : *distances) {
+      result.max = std::max(result.max, d);
+      if (d <= reach) within = std::max(within, d);
+    }
+  const double threshold = std::max(tolerance, share * within);
+  auto spot = [&](double d) { return d > threshold && d <= reach; };
+  for (int i = 0; i < nf; ++i)
+    if (spot(forward[static_cast<std::size_t>(i)]))
+      result.spots.emplace_back(-forward[static_cast<std::size_t>(i)], faces[static_cast<std::size_t>(i)].idx());
+  result.input_faces.assign(mesh.n_faces(), {});
+  for (int k = 0; k < nv + ni; ++k) {
+    const int owner = nearest[static_cast<std::size_t>(k)];
+    if (owner < 0) continue;
+    const double d = backward[static_cast<std::size_t>(k)];
+    if (spot(d)) result.spots.emplace_back(-d, owner);
+    auto& list = result.input_faces[static_cast<std::size_t>(owner)];
+    if (k >= nv) list.push_back(k - nv);
+    else
+      for (auto f : input.vf_range(TriMesh::VertexHandle(k))) list.push_back(f.idx());
+  }
+  std::sort(result.spots.begin(), result.spots.end());
+  return result;
+}
+
+// The vertices a spot's search moves: the corners of the spot face and the far corners of its neighbours (border
+// vertices and those with (*fixed)[index] != 0 stay), and the faces at them (the region).
+void region_of(const TriMesh& mesh, const std::vector<char>* fixed, TriMesh::FaceHandle spot,
+               std::vector<TriMesh::VertexHandle>& movable, std::vector<TriMesh::FaceHandle>& faces) {
+  movable.clear();
+  faces.clear();
+  auto add_vertex = [&](TriMesh::VertexHandle v) {
+    if (mesh.is_boundary(v) || (fixed && (*fixed)[static_cast<std::size_t>(v.idx())])) return;
+    if (std::find(movable.begin(), movable.end(), v) == movable.end()) movable.push_back(v);
+  };
+  for (auto h : mesh.fh_range(spot)) {
+    add_vertex(mesh.to_vertex_handle(h));
+    const auto o = mesh.opposite_halfedge_handle(h);
+    if (!mesh.is_boundary(o)) add_vertex(mesh.to_vertex_handle(mesh.next_halfedge_handle(o)));
+  }
+  for (auto v : movable)
+    for (auto f : mesh.vf_range(v))
+      if (std::find(faces.begin(), faces.end(), f) == faces.end()) faces.push_back(f);
+}
+
+// The region's distances: the largest, and the sum of the squared excess of every sample over a level below it (the
+// search also takes a move that keeps the largest and lowers the others near it: the next move may then lower it).
+struct Value {
+  double max = 0, excess = 0;
+  void add(double d, double level) {
+    max = std::max(max, d);
+    if (d > level) excess += (d - level) * (d - level);
+  }
+  void add(const Value& o) {
+    max = std::max(max, o.max);
+    excess += o.excess;
+  }
+  bool better_than(const Value& o) const {
+    return max < o.max * (1 - kGain) || (max <= o.max && excess < o.excess * (1 - kExcessGain));
+  }
+};
+
+// The pattern search around one spot (a remeshed face).
+class Region {
+ public:
+  Region(TriMesh& mesh, const std::vector<char>* fixed, const TriMesh& input, const Triangles& input_triangles,
+         const Tree& input_tree, const Scan& scan, double emin, double emax)
+      : mesh_(mesh), fixed_(fixed), input_(input), first_triangle_(input_triangles.begin()), input_tree_(input_tree),
+        scan_(scan), emin_(emin), emax_(emax) {}
+
+  // Returns the number of moves kept.
+  std::size_t optimize(TriMesh::FaceHandle spot) {
+    collect(spot);
+    if (movable_.empty()) return 0;
+    std::vector<Vec3> start_positions;
+    for (auto v : movable_) start_positions.push_back(mesh_.point(v));
+    const Samples check = input_samples(kCheck);
+    const double checked_before = largest_distance(check, kCheck);
+    // The search sees `grid_` samples a face; its result is kept only if the largest distance over the check's
+    // finer samples fell too. Else the search may have only moved the largest distance between its samples: it
+    // runs again from the start with twice the samples, while fewer than the check's.
+    for (grid_ = kGrid; grid_ < kCheck; grid_ *= 2) {
+      const std::size_t moves = search();
+      if (moves == 0) return 0;
+      if (largest_distance(check, kCheck) < checked_before) return moves;
+      for (std::size_t m = 0; m < movable_.size(); ++m) mesh_.point(movable_[m]) = start_positions[m];
+    }
+    return 0;
+  }
+
+ private:
+  // The pattern search over the movable vertices; returns the number of moves kept.
+  std::size_t search() {
+    samples_ = input_samples(grid_);
+    level_ = 0;
+    level_ = kLevel * objective().max;
+    forward_.clear();
+    for (auto f : faces_) forward_.push_back(face_forward_near(f));
+    Value current = objective();
+    std::size_t moves = 0;
+    int sweeps = 0;
+    for (double step = kFirstStep * emin_; step >= kLastStep * emin_ && sweeps < kSweeps; ++sweeps) {
+      bool improved = false;
+      for (std::size_t m = 0; m < movable_.size(); ++m) {
+        const auto v = movable_[m];
+        const Vec3 start = mesh_.point(v);
+        const Vec3 n = geometry::vertex_normal(mesh_, v);
+        Vec3 t1, t2;
+        geometry::tangent_basis(n, t1, t2);
+        Vec3 best_position = start;
+        Value best = current;
+        save(m);
+        for (const Vec3& direction : {n, -n, t1, -t1, t2, -t2}) {
+          Value value;
+          if (try_position(m, start + step * direction, value) && value.better_than(best)) {
+            best = value;
+            best_position = start + step * direction;
+          }
+        }
+        if (best_position != start) {
+          Value kept;
+          try_position(m, best_position, kept);
+          for (std::size_t j = 0; j < at_vertex_[m].size(); ++j)
+            forward_[static_cast<std::size_t>(at_vertex_[m][j])] = moved_forward_[j];
+          current = kept;
+          ++moves;
+          improved = true;
+        } else {
+          mesh_.point(v) = start;
+        }
+      }
+      if (!improved) step *= 0.5;
+    }
+    return moves;
+  }
+
+  // Samples of the input faces under the region that are nearer a region face than any face of the ring around
+  // it (the others are the ring's, which no move changes), with their distance to the ring.
+  struct Samples {
+    std::vector<Vec3> points;
+    std::vector<double> ring;
+  };
+
+  Samples input_samples(int grid) const {
+    std::vector<Vec3> all;
+    for (const int k : inputs_) {
+      Vec3 a, b, c;
+      geometry::face_points(input_, TriMesh::FaceHandle(k), a, b, c);
+      dense_samples(a, b, c, grid, all);
+    }
+    Samples out;
+    const auto region_triangles = bounded(mesh_, faces_), ring_triangles = bounded(mesh_, ring_);
+    for (const Vec3& y : all) {
+      const double region = nearest_distance(y, region_triangles, std::numeric_limits<double>::infinity());
+      const double ring = nearest_distance(y, ring_triangles, std::numeric_limits<double>::infinity());
+      if (region < ring) {
+        out.points.push_back(y);
+        out.ring.push_back(ring);
+      }
+    }
+    return out;
+  }
+
+  // The largest distance over `grid` samples of the region's faces to the input and over the input samples to
+  // the region (or its ring).
+  double largest_distance(const Samples& samples, int grid) const {
+    double worst = 0;
+    for (auto f : faces_) worst = std::max(worst, face_forward(f, grid, nullptr).max);
+    const auto region_triangles = bounded(mesh_, faces_);
+    for (std::size_t k = 0; k < samples.points.size(); ++k)
+      worst = std::max(worst, nearest_distance(samples.points[k], region_triangles, samples.ring[k]));
+    return worst;
+  }
+
+  void collect(TriMesh::FaceHandle spot) {
+    region_of(mesh_, fixed_, spot, movable_, faces_);
+    ring_.clear();
+    auto contains = [](const std::vector<TriMesh::FaceHandle>& list, TriMesh::FaceHandle f) {
+      return std::find(list.begin(), list.end(), f) != list.end();
+    };
+    for (auto f : faces_)
+      for (auto v : mesh_.fv_range(f))
+        for (auto g : mesh_.vf_range(v))
+          if (!contains(faces_, g) && !contains(ring_, g)) ring_.push_back(g);
+    // The faces at each movable vertex, as positions in faces_.
+    at_vertex_.assign(movable_.size(), {});
+    for (std::size_t m = 0; m < movable_.size(); ++m)
+      for (auto f : mesh_.vf_range(movable_[m]))
+        at_vertex_[m].push_back(static_cast<int>(std::find(faces_.begin(), faces_.end(), f) - faces_.begin()));
+    // The faces' starting normals (the turn test); the input faces under them.
+    normals_.clear();
+    inputs_.clear();
+    for (auto f : faces_) {
+      normals_.push_back(geometry::face_normal(mesh_, f));
+      face_forward(f, kGrid, &inputs_);
+      const auto& near = scan_.input_faces[static_cast<std::size_t>(f.idx())];
+      inputs_.insert(inputs_.end(), near.begin(), near.end());
+    }
+    std::sort(inputs_.begin(), inputs_.end());
+    inputs_.erase(std::unique(inputs_.begin(), inputs_.end()), inputs_.end());
+    // The search measures the faces' distance to these input faces only: those under the region and the ones
+    // around them (a face moved farther would be measured farther than it is, never nearer).
+    std::vector<int> near = inputs_;
+    for (const int k : inputs_)
+      for (auto v : input_.fv_range(TriMesh::FaceHandle(k)))
+        for (auto g : input_.vf_range(v)) near.push_back(g.idx());
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    input_near_.clear();
+    for (const int k : near) input_near_.push_back(bounded(input_, TriMesh::FaceHandle(k)));
+  }
+
+  // The distances of the face's samples to the input (the input faces nearest them appended to `near`).
+  Value face_forward(TriMesh::FaceHandle f, int grid, std::vector<int>* near) const {
+    Vec3 a, b, c;
+    geometry::face_points(mesh_, f, a, b, c);
+    std::vector<Vec3> samples;
+    dense_samples(a, b, c, grid, samples);
+    Value value;
+    Tree::Point_and_primitive_id hint;
+    bool hinted = false;
+    for (const Vec3& p : samples) {
+      hint = hinted ? input_tree_.closest_point_and_primitive(to_point(p), hint)
+                    : input_tree_.closest_point_and_primitive(to_point(p));
+      hinted = true;
+      value.add((to_vec(hint.first) - p).norm(), level_);
+      if (near) near->push_back(static_cast<int>(hint.second - first_triangle_));
+    }
+    return value;
+  }
+
+  // The distances of the face's samples to the input faces near the region (the search's measure).
+  Value face_forward_near(TriMesh::FaceHandle f) const {
+    Vec3 a, b, c;
+    geometry::face_points(mesh_, f, a, b, c);
+    std::vector<Vec3> samples;
+    dense_samples(a, b, c, grid_, samples);
+    Value value;
+    std::size_t hint = input_near_.size();
+    for (const Vec3& p : samples)
+      value.add(nearest_distance(p, input_near_, std::numeric_limits<double>::infinity(), hint), level_);
+    return value;
+  }
+
+  // The distances of the input samples to the triangles, or their bounds if those are nearer.
+  Value backward(const std::vector<BoundedTriangle>& triangles, const std::vector<double>& bounds) const {
+    Value value;
+    for (std::size_t k = 0; k < samples_.points.size(); ++k)
+      value.add(nearest_distance(samples_.points[k], triangles, bounds[k]), level_);
+    return value;
+  }
+
+  // The region's distances with the faces as they are (the search's samples).
+  Value objective() const {
+    Value value;
+    for (auto f : faces_) value.add(face_forward_near(f));
+    value.add(backward(bounded(mesh_, faces_), samples_.ring));
+    return value;
+  }
+
+  // Before the tries of vertex m: the distances that its moves do not change (of and to the faces away from it).
+  void save(std::size_t m) {
+    std::vector<TriMesh::FaceHandle> others;
+    other_forward_ = Value{};
+    for (std::size_t i = 0; i < faces_.size(); ++i) {
+      if (std::find(at_vertex_[m].begin(), at_vertex_[m].end(), static_cast<int>(i)) != at_vertex_[m].end())
+        continue;
+      others.push_back(faces_[i]);
+      other_forward_.add(forward_[i]);
+    }
+    const auto triangles = bounded(mesh_, others);
+    other_backward_.resize(samples_.points.size());
+    for (std::size_t k = 0; k < samples_.points.size(); ++k)
+      other_backward_[k] = nearest_distance(samples_.points[k], triangles, samples_.ring[k]);
+  }
+
+  // Moves vertex m to p; false if the move breaks a rule, else the region's distances in `value`.
+  bool try_position(std::size_t m, const Vec3& p, Value& value) {
+    const auto v = movable_[m];
+    mesh_.point(v) = p;
+    if (!geometry::star_inside(mesh_, v, emin_, emax_)) return false;
+    for (const int i : at_vertex_[m])
+      if (OpenMesh::dot(geometry::face_normal(mesh_, faces_[static_cast<std::size_t>(i)]),
+                        normals_[static_cast<std::size_t>(i)]) < geometry::kMaxNormalTurnCos)
+        return false;
+    value = other_forward_;
+    std::vector<TriMesh::FaceHandle> moved;
+    moved_forward_.clear();
+    for (const int i : at_vertex_[m]) {
+      const auto f = faces_[static_cast<std::size_t>(i)];
+      moved_forward_.push_back(face_forward_near(f));
+      value.add(moved_forward_.back());
+      moved.push_back(f);
+    }
+    value.add(backward(bounded(mesh_, moved), other_backward_));
+    return true;
+  }
+
+  TriMesh& mesh_;
+  const std::vector<char>* fixed_;
+  const TriMesh& input_;
+  Triangles::const_iterator first_triangle_;
+  const Tree& input_tree_;
+  const Scan& scan_;
+  double emin_, emax_;
+  double level_ = 0;  // the excess level of this region's search
+  int grid_ = kGrid;  // and its samples a face (the grid's step is 1 / grid_)
+  std::vector<TriMesh::VertexHandle> movable_;
+  std::vector<TriMesh::FaceHandle> faces_, ring_;
+  std::vector<std::vector<int>> at_vertex_;
+  std::vector<int> inputs_;
+  std::vector<Vec3> normals_;
+  Samples samples_;
+  std::vector<BoundedTriangle> input_near_;
+  std::vector<Value> forward_, moved_forward_;  // by face of the region; of the faces at the vertex tried
+  Value other_forward_;
+  std::vector<double> other_backward_;
+};
+
+}  // namespace
+
+MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
+                             const MinimaxFitSettings& settings, const std::vector<char>* fixed) {
+  MinimaxFitResult result;
+  if (mesh.n_faces() == 0 || surface.n_faces() == 0) return result;
+  const Triangles input_triangles = triangles_of(surface);
+  Tree input_tree(input_triangles.begin(), input_triangles.end());
+  input_tree.build();  // before the threads query it
+  input_tree.accelerate_distance_queries();
+  for (int round = 0; round <= settings.rounds; ++round) {
+    // Farther than an edge, a part of the input was cut off (RemeshResult::farthest_input): not for this search.
+    const Scan found = scan(mesh, surface, input_tree, settings.share, settings.tolerance, emax);
+    if (round == 0) result.max_before = found.max;
+    result.max_after = found.max;
+    if (round == settings.rounds) break;
+    // The spots searched: farthest first, each unless the region of an earlier one has its face.
+    std::vector<char> touched(mesh.n_faces(), 0);
+    std::vector<TriMesh::FaceHandle> spots;
+    std::vector<Vec3> centres;
+    std::vector<TriMesh::VertexHandle> movable;
+    std::vector<TriMesh::FaceHandle> faces;
+    for (const auto& [unused, index] : found.spots) {
+      if (touched[static_cast<std::size_t>(index)]) continue;
+      const TriMesh::FaceHandle spot(index);
+      region_of(mesh, fixed, spot, movable, faces);
+      for (auto f : faces) touched[static_cast<std::size_t>(f.idx())] = 1;
+      Vec3 a, b, c;
+      geometry::face_points(mesh, spot, a, b, c);
+      spots.push_back(spot);
+      centres.push_back((a + b + c) / 3.0);
+    }
+    result.spots += spots.size();
+    // On every thread, with the result of one (OrderedSchedule): a search reads the mesh within 3.6 edges of its
+    // spot's centroid (its region and the ring around it), and its vertices move by the sum of its steps at most.
+    const double radius = 4 * emax + kSweeps * kFirstStep * emin;
+    std::vector<Region> regions(static_cast<std::size_t>(max_threads()),
+                                Region(mesh, fixed, surface, input_triangles, input_tree, found, emin, emax));
+    std::vector<std::size_t> moves(spots.size(), 0);
+    OrderedSchedule(centres, radius).run([&](std::size_t k, int thread) {
+      moves[k] = regions[static_cast<std::size_t>(thread)].optimize(spots[k]);
+    });
+    std::size_t kept = 0;
+    for (const std::size_t m : moves) kept += m;
+    result.moves += kept;
+    if (kept == 0) break;  // the surface did not change: max_after stands
+  }
+  return result;
+}
+
+}  // namespace carbonmesh
