@@ -1,6 +1,7 @@
 #include "carbonmesh/remesh/hausdorff.hpp"
 
 #include "carbonmesh/remesh/triangle_tree.hpp"
+#include "farthest_point.hpp"
 
 #include <algorithm>
 #include <array>
@@ -63,6 +64,10 @@ std::vector<Point> face_vertices(const TriMesh& mesh) {
   return points;
 }
 
+}  // namespace
+
+namespace {
+
 // What the branch and bound knows of the distance to the tree's surface over one (sub-)triangle.
 struct Bounds {
   double lower = 0;  // attained: at a corner or the centroid
@@ -98,10 +103,7 @@ Bounds bounds(const std::array<Point, 3>& piece, const Tree& tree) {
   return b;
 }
 
-struct Farthest {
-  double distance = 0, bound = 0;  // attained at `at`; no point is farther than `bound`
-  Point at;
-};
+}  // namespace
 
 // The largest distance of the triangles' points to the tree's surface, bracketed: pieces (the faces first) whose
 // upper bound exceeds the largest distance found so far by more than `tolerance` are split into four at their edge
@@ -168,8 +170,6 @@ Farthest farthest_point(const Triangles& triangles, const Tree& tree, double tol
   for (; !open.empty(); open.pop()) upper = std::max(upper, open.top().upper);  // (the budget ran out)
   return {lower, std::max(lower, upper), at};
 }
-
-}  // namespace
 
 HausdorffResult hausdorff_distance(const TriMesh& mesh, const TriMesh& reference, const HausdorffSettings& settings) {
   HausdorffResult r;

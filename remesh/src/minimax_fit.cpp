@@ -14,8 +14,10 @@
 // can both come down). The distances are those of 15 samples of each region face to the input faces near it and of
 // 15 samples of each input face under the region to the region's faces (the samples nearer the region than the
 // ring of faces around it; the others are the ring's, which no move changes). The result is kept only if the
-// largest distance over 153 samples a face fell too (else the search may only have moved it between its samples:
-// it runs again with 45 samples a face, then gives up). Spots run on every thread, each starting once every
+// region's largest distance fell for certain: the bound over every point of its faces (branch and bound, as
+// `carbonmesh stats --ref`) and over 153 samples of each input face under it lie below the largest distance the
+// region had (else the search may only have moved it between its samples: it runs again with 45 samples a face,
+// then gives up). Spots run on every thread, each starting once every
 // earlier spot near it has finished (OrderedSchedule): the output does not depend on the thread count.
 #include <algorithm>
 #include <array>
@@ -25,6 +27,7 @@
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
+#include "farthest_point.hpp"
 #include "ordered_schedule.hpp"
 #include "remesh_geometry.hpp"
 #include "threads.hpp"
@@ -35,8 +38,10 @@ namespace {
 using namespace triangle_tree;
 
 constexpr int kGrid = 4;    // a face's samples in the search: the barycentric grid of step 1/4 (15 points), or 1/8
-constexpr int kCheck = 16;  // and in the check of a region's result (153 points): the search may only have moved
-                            // the largest distance between its samples
+constexpr int kCheck = 16;  // and of the input faces in the check of a region's result (153 points): the search
+                            // may only have moved the largest distance between its samples; the region's own
+constexpr double kTolerance = 1e-4;       // faces are bracketed to within this (as carbonmesh stats --ref)
+constexpr std::size_t kPiecesPerFace = 64;  // with at most this many pieces a face
 constexpr double kGain = 1e-6;  // a move must lower the region's largest distance by this fraction at least ...
 constexpr double kExcessGain = 1e-2;  // ... or keep it and lower the excess over kLevel of it by this fraction
 constexpr double kLevel = 0.7;
@@ -242,14 +247,14 @@ class Region {
     std::vector<Vec3> start_positions;
     for (auto v : movable_) start_positions.push_back(mesh_.point(v));
     const Samples check = input_samples(kCheck);
-    const double checked_before = largest_distance(check, kCheck);
+    const double checked_before = largest_distance(check).first;
     // The search sees `grid_` samples a face; its result is kept only if the largest distance over the check's
     // finer samples fell too. Else the search may have only moved the largest distance between its samples: it
     // runs again from the start with twice the samples, while fewer than the check's.
     for (grid_ = kGrid; grid_ < kCheck; grid_ *= 2) {
       const std::size_t moves = search();
       if (moves == 0) return 0;
-      if (largest_distance(check, kCheck) < checked_before) return moves;
+      if (largest_distance(check).second < checked_before) return moves;
       for (std::size_t m = 0; m < movable_.size(); ++m) mesh_.point(movable_[m]) = start_positions[m];
     }
     return 0;
@@ -330,13 +335,21 @@ class Region {
 
   // The largest distance over `grid` samples of the region's faces to the input and over the input samples to
   // the region (or its ring).
-  double largest_distance(const Samples& samples, int grid) const {
-    double worst = 0;
-    for (auto f : faces_) worst = std::max(worst, face_forward(f, grid, nullptr).max);
+  // The region's largest distance: over every point of its faces to the input (bracketed: attained and bound), and
+  // over the input samples to the region (or its ring).
+  std::pair<double, double> largest_distance(const Samples& samples) const {
+    Triangles triangles;
+    for (auto f : faces_) {
+      Vec3 a, b, c;
+      geometry::face_points(mesh_, f, a, b, c);
+      triangles.emplace_back(to_point(a), to_point(b), to_point(c));
+    }
+    const Farthest forward = farthest_point(triangles, input_tree_, kTolerance, kPiecesPerFace * triangles.size());
+    double backward = 0;
     const auto region_triangles = bounded(mesh_, faces_);
     for (std::size_t k = 0; k < samples.points.size(); ++k)
-      worst = std::max(worst, nearest_distance(samples.points[k], region_triangles, samples.ring[k]));
-    return worst;
+      backward = std::max(backward, nearest_distance(samples.points[k], region_triangles, samples.ring[k]));
+    return {std::max(forward.distance, backward), std::max(forward.bound, backward)};
   }
 
   void collect(TriMesh::FaceHandle spot) {
