@@ -118,7 +118,7 @@ def main():
     lines = ["## Remeshing: the dissertation's protocol vs CGAL isotropic_remeshing", "",
              f"Machine: {machine_line()}. Inputs: ../shared/models/seed-protocol (mean edge 2.25). carbonmesh: "
              "`carbonmesh remesh IN OUT --emin 1.2 --emax 1.8 --iterations 150 --kl 2 --kn 2 --p 0 --l 0.5 "
-             "--weights mean-value` (with the final feature snap and least-squares surface fit, the defaults; "
+             "--weights mean-value` (with the final feature snap, least-squares surface fit and minimax fit, the defaults; "
              "`--no-snap` skips the snap, `--no-fit` leaves every vertex on the input). CGAL: isotropic_remeshing, "
              "target 1.5, 10 iterations, borders protected. Seconds: the method's own time (carbonmesh's remesh() / "
              f"CGAL's calls, without file IO), the fastest of {args.repeat} runs, the two methods taking turns; "
