@@ -38,9 +38,9 @@ namespace {
 using namespace triangle_tree;
 
 constexpr int kGrid = 4;    // a face's samples in the search: the barycentric grid of step 1/4 (15 points), or 1/8
-constexpr int kCheck = 16;  // and of the input faces in the check of a region's result (153 points): the search
-                            // may only have moved the largest distance between its samples; the region's own
-constexpr double kTolerance = 1e-4;       // faces are bracketed to within this (as carbonmesh stats --ref)
+constexpr int kCheck = 16;  // the check of a region's result: 153 samples of each input face under it (the search
+                            // may only have moved the largest distance between its samples), and the region's
+constexpr double kTolerance = 1e-4;         // own faces bracketed to within this (as carbonmesh stats --ref),
 constexpr std::size_t kPiecesPerFace = 64;  // with at most this many pieces a face
 constexpr double kGain = 1e-6;  // a move must lower the region's largest distance by this fraction at least ...
 constexpr double kExcessGain = 1e-2;  // ... or keep it and lower the excess over kLevel of it by this fraction
@@ -375,7 +375,7 @@ class Region {
     inputs_.clear();
     for (auto f : faces_) {
       normals_.push_back(geometry::face_normal(mesh_, f));
-      face_forward(f, kGrid, &inputs_);
+      input_faces_under(f, inputs_);
       const auto& near = scan_.input_faces[static_cast<std::size_t>(f.idx())];
       inputs_.insert(inputs_.end(), near.begin(), near.end());
     }
@@ -393,23 +393,20 @@ class Region {
     for (const int k : near) input_near_.push_back(bounded(input_, TriMesh::FaceHandle(k)));
   }
 
-  // The distances of the face's samples to the input (the input faces nearest them appended to `near`).
-  Value face_forward(TriMesh::FaceHandle f, int grid, std::vector<int>* near) const {
+  // Appends the input faces nearest the face's samples (found in the AABB tree, each sample's hit the next's hint).
+  void input_faces_under(TriMesh::FaceHandle f, std::vector<int>& out) const {
     Vec3 a, b, c;
     geometry::face_points(mesh_, f, a, b, c);
     std::vector<Vec3> samples;
-    dense_samples(a, b, c, grid, samples);
-    Value value;
+    dense_samples(a, b, c, kGrid, samples);
     Tree::Point_and_primitive_id hint;
     bool hinted = false;
     for (const Vec3& p : samples) {
       hint = hinted ? input_tree_.closest_point_and_primitive(to_point(p), hint)
                     : input_tree_.closest_point_and_primitive(to_point(p));
       hinted = true;
-      value.add((to_vec(hint.first) - p).norm(), level_);
-      if (near) near->push_back(static_cast<int>(hint.second - first_triangle_));
+      out.push_back(static_cast<int>(hint.second - first_triangle_));
     }
-    return value;
   }
 
   // The distances of the face's samples to the input faces near the region (the search's measure).
