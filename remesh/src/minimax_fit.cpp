@@ -51,8 +51,6 @@ constexpr int kSweeps = 24;                            // at most this many swee
 // its whole rim between 0.8 emax and emax from the input, had 61: 3.3 s for a maximum of 2.71 -> 2.61).
 constexpr std::size_t kMaxSpots = 16;
 
-Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
-
 void dense_samples(const Vec3& a, const Vec3& b, const Vec3& c, int grid, std::vector<Vec3>& out) {
   for (int i = 0; i <= grid; ++i)
     for (int j = 0; j <= grid - i; ++j) {
@@ -143,8 +141,15 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, dou
       worst = std::max(worst, input_tree.squared_distance(to_point(p)));
     forward[static_cast<std::size_t>(i)] = std::sqrt(worst);
   }
-  // Input corners and face centroids, to the remeshed surface (and the remeshed face nearest each).
-  const Triangles triangles = triangles_of(mesh);
+  // Input corners and face centroids, to the remeshed surface (and the remeshed face nearest each; the tree's
+  // triangles in the order of `faces`).
+  Triangles triangles;
+  triangles.reserve(faces.size());
+  for (auto f : faces) {
+    Vec3 a, b, c;
+    geometry::face_points(mesh, f, a, b, c);
+    triangles.emplace_back(to_point(a), to_point(b), to_point(c));
+  }
   Tree tree(triangles.begin(), triangles.end());
   tree.build();
   tree.accelerate_distance_queries();
@@ -267,8 +272,7 @@ class Region {
   // The pattern search over the movable vertices; returns the number of moves kept.
   std::size_t search() {
     samples_ = input_samples(grid_);
-    level_ = 0;
-    level_ = kLevel * objective().max;
+    level_ = kLevel * objective().max;  // (the largest distance does not depend on the level)
     forward_.clear();
     for (auto f : faces_) forward_.push_back(face_forward_near(f));
     Value current = objective();

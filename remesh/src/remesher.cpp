@@ -448,8 +448,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                     "{:.4f}",
                     flips.flips, flips.candidates, s.snap_tolerance * s.emin, flips.max_before, flips.max_after);
     }
+    // The vertices the snap put on features stay there in the fit and the minimax fit.
+    const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
     if (s.fit_surface) {
-      const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
       const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax, {}, snapped);
       result.fitted = true;
       result.fit_rms_before = fit.rms_before;
@@ -461,7 +462,6 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       const double t0 = seconds();
       MinimaxFitSettings minimax_settings;
       minimax_settings.tolerance = s.snap_tolerance * s.emin;
-      const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;  // they stay, as in the fit
       const MinimaxFitResult minimax =
           minimax_fit(mesh, input ? *input : *target, s.emin, s.emax, minimax_settings, snapped);
       result.minimax_fitted = true;

@@ -43,8 +43,6 @@ struct Sample {
 // faces and their order do not change between evaluations, only the positions a little).
 using Hints = std::vector<Tree::Point_and_primitive_id>;
 
-Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
-
 // Signed distances of the quadrature points of every face to the input (parallel over faces; each sample
 // writes its own slot, so the result does not depend on the thread count).
 std::vector<Sample> sample_residuals(const TriMesh& mesh, const Tree& tree, const std::vector<Vec3>& normals,

@@ -23,6 +23,7 @@ using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterato
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 inline Point to_point(const Vec3& p) { return Point(p[0], p[1], p[2]); }
+inline Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
 
 // The mesh's triangles in face order (the tree keeps iterators into this list: keep it alive and unchanged).
 inline Triangles triangles_of(const TriMesh& mesh) {
