@@ -21,6 +21,7 @@
 // earlier spot near it has finished (OrderedSchedule): the output does not depend on the thread count.
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -126,20 +127,76 @@ struct Scan {
   std::vector<std::vector<int>> input_faces;  // by remeshed face index: the input faces with a sample nearest it
 };
 
-Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, double share, double tolerance,
-          double reach) {
+// What a scan keeps for the next one: the search moves vertices only, so the live faces keep their positions in the
+// list, and a face none of whose corners moved keeps its distances.
+struct ScanMemory {
+  std::vector<double> centroid, bound;             // by face position: the centroid's distance, the face's bound
+  std::vector<Tree::Point_and_primitive_id> hits;  // and the centroid's nearest input point
+  std::vector<Vec3> nearest_point;                 // by input point: its nearest remeshed point ...
+  std::vector<int> nearest_position;               // ... on this face (a position; -1: none)
+};
+
+// The scan of both surfaces. With `moved` (by face index: a corner moved since the scan that filled `memory`), the
+// other faces' distances are taken from `memory` and the input points' nearest points there start their searches.
+// With `spots_wanted` false only Scan::max is filled in.
+Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Triangles::const_iterator first_input,
+          double share, double tolerance, double reach, ScanMemory& memory, const std::vector<char>* moved,
+          bool spots_wanted) {
   const auto faces = live_faces(mesh);
   const int nf = static_cast<int>(faces.size());
-  // Remeshed faces: centroid and edge midpoints, to the input.
-  std::vector<double> forward(faces.size(), 0);
+  auto kept = [&](std::size_t k) { return moved && !(*moved)[static_cast<std::size_t>(faces[k].idx())]; };
+  // Remeshed faces: centroid and edge midpoints, to the input. The centroid is measured in the tree; a midpoint is
+  // first bounded by the input faces around the centroid's nearest one, and measured in the tree only where the
+  // face's bound could make it a spot or set a largest distance (below): the figures are those of measuring all.
+  std::vector<double>& bound = memory.bound;
+  std::vector<Tree::Point_and_primitive_id>& hits = memory.hits;
+  if (!moved) {
+    memory.centroid.assign(faces.size(), 0);
+    bound.assign(faces.size(), 0);
+    hits.assign(faces.size(), {});
+  }
+  const double cutoff = 0.5 * tolerance;  // a bound this small is looked no further into (see `needed`)
 #pragma omp parallel for schedule(dynamic, 256)
   for (int i = 0; i < nf; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (kept(k)) continue;
     Vec3 a, b, c;
-    geometry::face_points(mesh, faces[static_cast<std::size_t>(i)], a, b, c);
-    double worst = 0;
-    for (const Vec3& p : {(a + b + c) / 3.0, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)})
-      worst = std::max(worst, input_tree.squared_distance(to_point(p)));
-    forward[static_cast<std::size_t>(i)] = std::sqrt(worst);
+    geometry::face_points(mesh, faces[k], a, b, c);
+    const Vec3 centroid = (a + b + c) / 3.0;
+    hits[k] = input_tree.closest_point_and_primitive(to_point(centroid));
+    memory.centroid[k] = bound[k] = (to_vec(hits[k].first) - centroid).norm();
+    const TriMesh::FaceHandle nearest(static_cast<int>(hits[k].second - first_input));
+    for (const Vec3& p : {0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)}) {
+      Vec3 x, y, z;
+      geometry::face_points(input, nearest, x, y, z);
+      double d = point_triangle_distance(p, x, y, z);
+      for (auto corner : input.fv_range(nearest))
+        for (auto g : input.vf_range(corner)) {
+          if (d <= cutoff || d <= memory.centroid[k]) break;
+          geometry::face_points(input, g, x, y, z);
+          d = std::min(d, point_triangle_distance(p, x, y, z));
+        }
+      bound[k] = std::max(bound[k], d);
+    }
+  }
+  // The largest centroid distance of a face whose bound is within reach is a lower bound of the largest distance
+  // within reach (and of the largest): a face whose bound is no larger than it, and than the spots' threshold it
+  // gives, is neither a spot nor sets a largest distance; the others are measured.
+  std::vector<double> forward = memory.centroid;
+  double lower = 0;
+  for (std::size_t k = 0; k < faces.size(); ++k)
+    if (bound[k] <= reach) lower = std::max(lower, forward[k]);
+  const double needed = std::min(lower, std::max(tolerance, share * lower));
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int i = 0; i < nf; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (bound[k] <= needed) continue;
+    Vec3 a, b, c;
+    geometry::face_points(mesh, faces[k], a, b, c);
+    double worst = forward[k] * forward[k];
+    for (const Vec3& p : {0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)})
+      worst = std::max(worst, input_tree.squared_distance(to_point(p), hits[k].first));
+    forward[k] = std::sqrt(worst);
   }
   // Input corners and face centroids, to the remeshed surface (and the remeshed face nearest each; the tree's
   // triangles in the order of `faces`).
@@ -155,7 +212,10 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, dou
   tree.accelerate_distance_queries();
   const int nv = static_cast<int>(input.n_vertices()), ni = static_cast<int>(input.n_faces());
   std::vector<double> backward(static_cast<std::size_t>(nv + ni), 0);
-  std::vector<int> nearest(static_cast<std::size_t>(nv + ni), -1);
+  if (!moved) {
+    memory.nearest_point.assign(static_cast<std::size_t>(nv + ni), Vec3(0, 0, 0));
+    memory.nearest_position.assign(static_cast<std::size_t>(nv + ni), -1);
+  }
 #pragma omp parallel for schedule(dynamic, 256)
   for (int k = 0; k < nv + ni; ++k) {
     Vec3 p;
@@ -170,9 +230,15 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, dou
       geometry::face_points(input, f, a, b, c);
       p = (a + b + c) / 3.0;
     }
-    const auto hit = tree.closest_point_and_primitive(to_point(p));
-    backward[static_cast<std::size_t>(k)] = (to_vec(hit.first) - p).norm();
-    nearest[static_cast<std::size_t>(k)] = faces[static_cast<std::size_t>(hit.second - triangles.begin())].idx();
+    const auto j = static_cast<std::size_t>(k);
+    const int before = memory.nearest_position[j];
+    const auto hit = moved && before >= 0 && kept(static_cast<std::size_t>(before))
+                         ? tree.closest_point_and_primitive(to_point(p), {to_point(memory.nearest_point[j]),
+                                                                          triangles.begin() + before})
+                         : tree.closest_point_and_primitive(to_point(p));
+    backward[j] = (to_vec(hit.first) - p).norm();
+    memory.nearest_point[j] = to_vec(hit.first);
+    memory.nearest_position[j] = static_cast<int>(hit.second - triangles.begin());
   }
   Scan result;
   // Spots farther than `reach` are out of the search's reach (a part of the input cut off, an input border the
@@ -183,6 +249,7 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, dou
       result.max = std::max(result.max, d);
       if (d <= reach) within = std::max(within, d);
     }
+  if (!spots_wanted) return result;
   const double threshold = std::max(tolerance, share * within);
   auto spot = [&](double d) { return d > threshold && d <= reach; };
   for (int i = 0; i < nf; ++i)
@@ -190,8 +257,9 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, dou
       result.spots.emplace_back(-forward[static_cast<std::size_t>(i)], faces[static_cast<std::size_t>(i)].idx());
   result.input_faces.assign(mesh.n_faces(), {});
   for (int k = 0; k < nv + ni; ++k) {
-    const int owner = nearest[static_cast<std::size_t>(k)];
-    if (owner < 0) continue;
+    const int position = memory.nearest_position[static_cast<std::size_t>(k)];
+    if (position < 0) continue;
+    const int owner = faces[static_cast<std::size_t>(position)].idx();
     const double d = backward[static_cast<std::size_t>(k)];
     if (spot(d)) result.spots.emplace_back(-d, owner);
     auto& list = result.input_faces[static_cast<std::size_t>(owner)];
@@ -511,9 +579,15 @@ MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin,
   Tree input_tree(input_triangles.begin(), input_triangles.end());
   input_tree.build();  // before the threads query it
   input_tree.accelerate_distance_queries();
+  ScanMemory memory;
+  std::vector<char> moved;  // by face index: a corner moved in the last round's searches
+  std::vector<Vec3> positions;
   for (int round = 0; round <= settings.rounds; ++round) {
     // Farther than an edge, a part of the input was cut off (RemeshResult::farthest_input): not for this search.
-    const Scan found = scan(mesh, surface, input_tree, settings.share, settings.tolerance, emax);
+    const auto scan_start = std::chrono::steady_clock::now();
+    const Scan found = scan(mesh, surface, input_tree, input_triangles.begin(), settings.share, settings.tolerance,
+                            emax, memory, round == 0 ? nullptr : &moved, round < settings.rounds);
+    result.scan_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - scan_start).count();
     if (round == 0) result.max_before = found.max;
     result.max_after = found.max;
     if (round == settings.rounds) break;
@@ -541,6 +615,9 @@ MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin,
     std::vector<Region> regions(static_cast<std::size_t>(max_threads()),
                                 Region(mesh, fixed, surface, input_triangles, input_tree, found, emin, emax));
     std::vector<std::size_t> moves(spots.size(), 0);
+    positions.resize(mesh.n_vertices());
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      positions[i] = mesh.point(TriMesh::VertexHandle(static_cast<int>(i)));
     OrderedSchedule(centres, radius).run([&](std::size_t k, int thread) {
       moves[k] = regions[static_cast<std::size_t>(thread)].optimize(spots[k]);
     });
@@ -548,6 +625,11 @@ MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin,
     for (const std::size_t m : moves) kept += m;
     result.moves += kept;
     if (kept == 0) break;  // the surface did not change: max_after stands
+    moved.assign(mesh.n_faces(), 0);
+    for (auto f : mesh.faces())
+      for (auto v : mesh.fv_range(f))
+        if (mesh.point(v) != positions[static_cast<std::size_t>(v.idx())])
+          moved[static_cast<std::size_t>(f.idx())] = 1;
   }
   return result;
 }

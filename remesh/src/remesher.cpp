@@ -468,8 +468,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.minimax_max_before = minimax.max_before;
       result.minimax_max_after = minimax.max_after;
       result.minimax_moves = minimax.moves;
-      spdlog::debug("minimax fit: largest sampled distance {:.4f} -> {:.4f}, {} moves at {} spots, {:.3f}s",
-                    minimax.max_before, minimax.max_after, minimax.moves, minimax.spots, seconds() - t0);
+      spdlog::debug("minimax fit: largest sampled distance {:.4f} -> {:.4f}, {} moves at {} spots, {:.3f}s "
+                    "(scans {:.3f}s)", minimax.max_before, minimax.max_after, minimax.moves, minimax.spots,
+                    seconds() - t0, minimax.scan_seconds);
     }
   }
   // The topology guard: a final mesh of another surface type is replaced by the best valid one.

@@ -338,6 +338,7 @@ struct MinimaxFitResult {
   double max_before = 0, max_after = 0;  // the largest sampled distance between the surfaces, before and after
   std::size_t spots = 0;                 // regions searched
   std::size_t moves = 0;                 // vertex moves kept
+  double scan_seconds = 0;               // of the time taken, the scans of both surfaces
 };
 
 // Moves the vertices around the spots where the remeshed surface and `surface` are farthest apart (either way,
