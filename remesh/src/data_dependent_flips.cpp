@@ -1,5 +1,6 @@
 // Edge flips that bring the remeshed surface nearer the input (a data-dependent triangulation in the sense of
-// Dyn, Levin and Rippa 1990; not in the dissertation).
+// Dyn, Levin and Rippa 1990; not in the dissertation). The flips that need the vertices around relaxed are in
+// relaxed_flips.cpp.
 //
 // With every vertex on the input, the triangulation between them still decides how far the surface strays from
 // it: a pair of triangles whose shared edge bridges a groove or cuts across a ridge lies up to most of an edge
@@ -9,7 +10,7 @@
 // quads flipped where the two new faces are at least kGain nearer, the new edge lies in [emin, emax], no new
 // angle falls under 3 degrees or half the old smallest one, no new face turns against an old one, no vertex
 // gets more than one off its ideal valence (6 inside, 4 on a border) unless it already was, and E_val (Eq 4.2)
-// rises by at most kValenceSlack.
+// rises by at most 2 (flip_valence_ok).
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
+#include "flips_toward_input.hpp"
 #include "remesh_geometry.hpp"
 
 namespace carbonmesh {
@@ -25,25 +27,7 @@ namespace {
 
 using namespace triangle_tree;
 
-constexpr double kGain = 0.9;       // the flipped pair must be this factor nearer the input at least
-constexpr int kValenceSlack = 2;    // E_val may rise by this much (one vertex pair 6,6 -> 5,7). Seed-protocol models,
-                                    // Hausdorff max at 2M samples: armadillo 0.589 -> 0.477 (6 flips), bunny 0.798 ->
-                                    // 0.647 (2); with 0: armadillo 0.528 (2), bunny no flip; with 4: 0.474 (10), 0.647
-
-// Whether the valences after the flip of edge a-b (opposite c, d) keep every vertex within one of its ideal
-// valence (or no farther than it was) and E_val within kValenceSlack of before.
-bool valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c,
-                TriMesh::VertexHandle d) {
-  int before = 0, after = 0;
-  for (const auto& [v, change] : {std::pair{a, -1}, std::pair{b, -1}, std::pair{c, 1}, std::pair{d, 1}}) {
-    const int off = static_cast<int>(mesh.valence(v)) - ideal_valence(mesh, v);
-    const int off_after = off + change;
-    if (std::abs(off_after) > std::max(1, std::abs(off))) return false;  // (so no valence under 3 either)
-    before += off * off;
-    after += off_after * off_after;
-  }
-  return after <= before + kValenceSlack;
-}
+constexpr double kGain = 0.9;  // the flipped pair must be this factor nearer the input at least
 
 // The valence flips' shape test, and no new angle under 3 degrees.
 bool geometry_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -53,8 +37,25 @@ bool geometry_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 
 }  // namespace
 
+// E_val may rise by 2 (one vertex pair 6,6 -> 5,7). Seed-protocol models, Hausdorff max at 2M samples: armadillo
+// 0.589 -> 0.477 (6 flips), bunny 0.798 -> 0.647 (2); with 0: armadillo 0.528 (2), bunny no flip; with 4: 0.474
+// (10), 0.647.
+bool flip_valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c,
+                     TriMesh::VertexHandle d) {
+  int before = 0, after = 0;
+  for (const auto& [v, change] : {std::pair{a, -1}, std::pair{b, -1}, std::pair{c, 1}, std::pair{d, 1}}) {
+    const int off = static_cast<int>(mesh.valence(v)) - ideal_valence(mesh, v);
+    const int off_after = off + change;
+    if (std::abs(off_after) > std::max(1, std::abs(off))) return false;  // (so no valence under 3 either)
+    before += off * off;
+    after += off_after * off_after;
+  }
+  return after <= before + 2;
+}
+
 DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, double emin, double emax,
-                                        double tolerance) {
+                                        double tolerance, const ProjectionTarget* target, int kn,
+                                        const std::vector<char>* fixed) {
   DataDependentFlips result;
   const Triangles triangles = triangles_of(input);
   if (triangles.empty() || mesh.n_faces() == 0) return result;
@@ -96,7 +97,7 @@ DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, dou
     const Vec3 a = mesh.point(va), b = mesh.point(vb), c = mesh.point(vc), d = mesh.point(vd);
     const double length = (c - d).norm();
     if (length < emin || length > emax) continue;
-    if (!valence_ok(mesh, va, vb, vc, vd) || !geometry_ok(a, b, c, d)) continue;
+    if (!flip_valence_ok(mesh, va, vb, vc, vd) || !geometry_ok(a, b, c, d)) continue;
     const auto f0 = mesh.face_handle(h), f1 = mesh.face_handle(o);
     const double before = std::max(at(f0), at(f1));
     if (std::max(face_distance(tree, a, d, c), face_distance(tree, b, c, d)) >= kGain * before) continue;
@@ -108,6 +109,8 @@ DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, dou
       at(f) = face_distance(tree, x, y, z);
     }
   }
+  if (target)
+    relaxed_flips(mesh, input, tree, triangles.begin(), distance, *target, kn, emin, emax, tolerance, fixed, result);
   for (const double d : distance) result.max_after = std::max(result.max_after, d);
   return result;
 }

@@ -441,12 +441,16 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                       snap.border_max_before, snap.border_max_after);
     }
     if (s.flip_toward_input) {
-      const DataDependentFlips flips =
-          data_dependent_flips(mesh, input ? *input : *target, s.emin, s.emax, s.snap_tolerance * s.emin);
+      const double t0 = seconds();
+      const DataDependentFlips flips = data_dependent_flips(mesh, input ? *input : *target, s.emin, s.emax,
+                                                            s.snap_tolerance * s.emin, projection_target.get(), s.kn,
+                                                            snap.fixed.empty() ? nullptr : &snap.fixed);
       result.data_dependent_flips = flips.flips;
-      spdlog::debug("data-dependent flips: {} of {} edges near faces farther than {:.4f}, farthest face {:.4f} -> "
-                    "{:.4f}",
-                    flips.flips, flips.candidates, s.snap_tolerance * s.emin, flips.max_before, flips.max_after);
+      result.relaxed_flips = flips.relaxed_flips;
+      spdlog::debug("data-dependent flips: {} of {} edges near faces farther than {:.4f}, {} of {} more with the "
+                    "vertices around relaxed, farthest face {:.4f} -> {:.4f}, {:.3f}s",
+                    flips.flips, flips.candidates, s.snap_tolerance * s.emin, flips.relaxed_flips, flips.relaxed_tries,
+                    flips.max_before, flips.max_after, seconds() - t0);
     }
     // The vertices the snap put on features stay there in the fit and the minimax fit.
     const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
@@ -583,6 +587,7 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"snap_border_max_before", r.snap_border_max_before},
           {"snap_border_max_after", r.snap_border_max_after},
           {"data_dependent_flips", r.data_dependent_flips},
+          {"relaxed_flips", r.relaxed_flips},
           {"farthest_input", r.farthest_input},
           {"farthest_input_point", {r.farthest_input_point[0], r.farthest_input_point[1], r.farthest_input_point[2]}},
           {"cut_off", r.cut_off},

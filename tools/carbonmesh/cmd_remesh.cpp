@@ -64,7 +64,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
   cmd->add_flag("--no-fit", opt->no_fit, "skip the final least-squares fit to the input (every vertex stays on the input, as in the dissertation; default: fit)");
   cmd->add_flag("--no-minimax", opt->no_minimax, "skip moving the vertices where the remeshed surface and the input are farthest apart so that the largest distance falls (default: move)");
   cmd->add_flag("--no-snap", opt->no_snap, "skip moving vertices onto input points the remeshed surface cuts off (ear rims, tips, grooves; default: snap)");
-  cmd->add_flag("--no-flips", opt->no_flips, "skip flipping edges whose faces bridge a groove or cut a ridge of the input where the other diagonal follows it (default: flip)");
+  cmd->add_flag("--no-flips", opt->no_flips, "skip flipping edges whose faces bridge a groove or cut a ridge of the input where the other diagonal follows it, also those whose other diagonal needs the vertices around relaxed (default: flip)");
   cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
   cmd->add_flag("--json", opt->json, "final summary as one JSON object instead of text");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
@@ -149,8 +149,9 @@ void add_remesh_command(CLI::App& app, Action& action) {
                                    result.snapped_border_vertices, result.snap_border_max_before,
                                    result.snap_border_max_after);
         if (settings.flip_toward_input && result.converged)
-          std::cout << fmt::format("data-dependent flips: {} edges flipped toward the input\n",
-                                   result.data_dependent_flips);
+          std::cout << fmt::format("data-dependent flips: {} edges flipped toward the input, {} more with the vertices "
+                                   "around relaxed\n",
+                                   result.data_dependent_flips, result.relaxed_flips);
         if (result.fitted)
           std::cout << fmt::format("surface fit: RMS distance to the input {:.4f} -> {:.4f}\n", result.fit_rms_before,
                                    result.fit_rms_after);

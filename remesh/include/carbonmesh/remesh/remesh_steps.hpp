@@ -252,6 +252,7 @@ FarthestInputVertex farthest_input_vertex(const TriMesh& mesh, const TriMesh& in
 struct DataDependentFlips {
   std::size_t candidates = 0;  // edges of faces farther than the tolerance from the input
   std::size_t flips = 0;
+  std::size_t relaxed_tries = 0, relaxed_flips = 0;  // flips with the vertices around relaxed: tried, kept
   double max_before = 0, max_after = 0;  // the largest sampled distance of a face to the input, before and after
 };
 // Flips the diagonal of the quads around faces farther than `tolerance` from `input` (farthest first) where the two
@@ -259,8 +260,16 @@ struct DataDependentFlips {
 // degrees, no new face turns against an old one, and the valences stay within one of the ideal (6 inside, 4 on a
 // border) with E_val (Eq 4.2) up by 2 at most. A pair of faces bridging a groove or cutting a ridge is replaced by
 // the pair along it.
+// With `target`, then the same flips where the new edge would lie outside [emin, emax] (from half emin to 1.7 emax),
+// farthest first: the edge is flipped and the interior vertices within kn + 2 rings of the new edge's ends are
+// relaxed (Error_b with the interval hinge, Eq 4.7) and projected onto `target`; kept only if the region has no
+// more edges outside [emin, emax] or faces under 3 degrees than before, no face folds, the two new faces end nearer
+// the input than 0.9 of the pair's distance d, and no other face moved and no input point near the region ends
+// farther than the larger of d and its own distance before (relaxed_flips.cpp). Vertices with (*fixed)[index] != 0
+// (those the snap put on features) stay where they are.
 DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, double emin, double emax,
-                                        double tolerance);
+                                        double tolerance, const ProjectionTarget* target = nullptr, int kn = 2,
+                                        const std::vector<char>* fixed = nullptr);
 
 // ---- spatial_order.cpp ----------------------------------------------------------------------------------
 

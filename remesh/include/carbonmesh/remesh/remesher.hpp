@@ -57,7 +57,8 @@ struct RemeshSettings {
   double snap_tolerance = 0.25;  // as a fraction of emin
   // After the snap, flip the diagonals of quads whose faces lie farther than snap_tolerance * emin from the input
   // where the other diagonal follows it (data_dependent_flips in remesh_steps.hpp: grooves, ridges), every edge
-  // kept inside and no vertex more than one off its ideal valence.
+  // kept inside and no vertex more than one off its ideal valence; then those whose other diagonal is outside the
+  // interval, with the vertices around relaxed until it is inside (relaxed_flips in remesh_steps.hpp).
   bool flip_toward_input = true;
   // At the end, measure the input vertex farthest from the remeshed surface (RemeshResult::farthest_input) and warn
   // when it is more than emax away: a part of the input was cut off (a slit, fin or rim narrower than emin, which
@@ -125,6 +126,7 @@ struct RemeshResult {
   std::size_t snapped_border_vertices = 0;
   double snap_border_max_before = 0, snap_border_max_after = 0;
   std::size_t data_dependent_flips = 0;  // flips toward the input (settings.flip_toward_input)
+  std::size_t relaxed_flips = 0;         // and those with their neighbourhood relaxed
   // The interior input vertex farthest from the final surface (settings.measure_cut_off): more than emax means a
   // part of the input was cut off, and remesh() warns.
   double farthest_input = 0;

@@ -1,0 +1,25 @@
+#pragma once
+// What data_dependent_flips() and its relaxed flips (relaxed_flips.cpp) share. Internal.
+#include <vector>
+
+#include "carbonmesh/remesh/mesh.hpp"
+#include "carbonmesh/remesh/remesh_steps.hpp"
+#include "carbonmesh/remesh/triangle_tree.hpp"
+
+namespace carbonmesh {
+
+// Whether the valences after the flip of edge a-b (opposite c, d) keep every vertex within one of its ideal valence
+// (or no farther than it was) and E_val (Eq 4.2) within 2 of before.
+bool flip_valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c,
+                     TriMesh::VertexHandle d);
+
+// The relaxed flips of data_dependent_flips() (see there), into result.relaxed_tries and result.relaxed_flips.
+// `tree`: over `input`'s faces in order, from `first`; `distance`: by face index, each face's distance to the input
+// in it (face_distance, or the centroid's where it is within half the tolerance), kept up to date. Vertices with
+// (*fixed)[index] != 0 on a tip of the input stay.
+void relaxed_flips(TriMesh& mesh, const TriMesh& input, const triangle_tree::Tree& tree,
+                   triangle_tree::Triangles::const_iterator first, std::vector<double>& distance,
+                   const ProjectionTarget& target, int kn, double emin, double emax, double tolerance,
+                   const std::vector<char>* fixed, DataDependentFlips& result);
+
+}  // namespace carbonmesh
