@@ -262,6 +262,11 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
     if (!kept) {
       for (const auto& [w, p] : saved) mesh.set_point(w, p);
       mesh.flip(e);
+      for (auto f : {f0, f1}) {  // (flipped back, the two faces may hold each other's triangles)
+        Vec3 x, y, z;
+        geometry::face_points(mesh, f, x, y, z);
+        at(f) = face_distance(tree, x, y, z);
+      }
       continue;
     }
     ++result.relaxed_flips;
