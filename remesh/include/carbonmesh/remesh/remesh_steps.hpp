@@ -265,8 +265,9 @@ struct DataDependentFlips {
 // relaxed (Error_b with the interval hinge, Eq 4.7) and projected onto `target`; kept only if the region has no
 // more edges outside [emin, emax] or faces under 3 degrees than before, no face folds, the two new faces end nearer
 // the input than 0.9 of the pair's distance d, and no other face moved and no input point near the region ends
-// farther than the larger of d and its own distance before (relaxed_flips.cpp). Vertices with (*fixed)[index] != 0
-// (those the snap put on features) stay where they are.
+// farther than the larger of d and its own distance before (relaxed_flips.cpp). Of the vertices with
+// (*fixed)[index] != 0 (those the snap put on input vertices), those on a tip of the input (an angle deficit over 60
+// degrees) stay; the others may move, their input vertices being watched like every input point.
 DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, double emin, double emax,
                                         double tolerance, const ProjectionTarget* target = nullptr, int kn = 2,
                                         const std::vector<char>* fixed = nullptr);
