@@ -53,6 +53,19 @@ bool flip_valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::Vert
   return after <= before + 2;
 }
 
+std::vector<std::pair<double, int>> far_edges(const TriMesh& mesh, const std::vector<double>& distance,
+                                             double tolerance) {
+  auto at = [&](TriMesh::HalfedgeHandle h) { return distance[static_cast<std::size_t>(mesh.face_handle(h).idx())]; };
+  std::vector<std::pair<double, int>> order;
+  for (auto e : mesh.edges()) {
+    if (mesh.status(e).deleted() || mesh.is_boundary(e)) continue;
+    const double d = std::max(at(mesh.halfedge_handle(e, 0)), at(mesh.halfedge_handle(e, 1)));
+    if (d > tolerance) order.emplace_back(-d, e.idx());
+  }
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
 DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, double emin, double emax,
                                         double tolerance, const ProjectionTarget* target, int kn,
                                         const std::vector<char>* fixed) {
@@ -78,14 +91,7 @@ DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, dou
   auto at = [&](TriMesh::FaceHandle f) -> double& { return distance[static_cast<std::size_t>(f.idx())]; };
   for (const double d : distance) result.max_before = std::max(result.max_before, d);
   // Edges of the faces farther than the tolerance, farthest first (ties by edge index).
-  std::vector<std::pair<double, int>> order;
-  for (auto e : mesh.edges()) {
-    if (mesh.status(e).deleted() || mesh.is_boundary(e)) continue;
-    const double d = std::max(at(mesh.face_handle(mesh.halfedge_handle(e, 0))),
-                              at(mesh.face_handle(mesh.halfedge_handle(e, 1))));
-    if (d > tolerance) order.emplace_back(-d, e.idx());
-  }
-  std::sort(order.begin(), order.end());
+  const std::vector<std::pair<double, int>> order = far_edges(mesh, distance, tolerance);
   result.candidates = order.size();
   for (const auto& [unused, index] : order) {
     const TriMesh::EdgeHandle e(index);

@@ -1,5 +1,6 @@
 #pragma once
 // What data_dependent_flips() and its relaxed flips (relaxed_flips.cpp) share. Internal.
+#include <utility>
 #include <vector>
 
 #include "carbonmesh/remesh/mesh.hpp"
@@ -12,6 +13,11 @@ namespace carbonmesh {
 // (or no farther than it was) and E_val (Eq 4.2) within 2 of before.
 bool flip_valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c,
                      TriMesh::VertexHandle d);
+
+// The interior edges with a face farther than `tolerance` (`distance`: by face index), as (-distance, edge index),
+// farthest first (ties by index).
+std::vector<std::pair<double, int>> far_edges(const TriMesh& mesh, const std::vector<double>& distance,
+                                             double tolerance);
 
 // The relaxed flips of data_dependent_flips() (see there), into result.relaxed_tries and result.relaxed_flips.
 // `tree`: over `input`'s faces in order, from `first`; `distance`: by face index, each face's distance to the input

@@ -28,6 +28,7 @@
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
+#include "bounded_triangles.hpp"
 #include "farthest_point.hpp"
 #include "ordered_schedule.hpp"
 #include "remesh_geometry.hpp"
@@ -58,58 +59,6 @@ void dense_samples(const Vec3& a, const Vec3& b, const Vec3& c, int grid, std::v
       const double u = static_cast<double>(i) / grid, v = static_cast<double>(j) / grid;
       out.push_back((1 - u - v) * a + u * b + v * c);
     }
-}
-
-double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  return (geometry::closest_point_on_triangle(p, a, b, c) - p).norm();
-}
-
-// A triangle with the ball around it: a point farther from the centre than its distance bound plus the radius
-// cannot be nearer than the bound, and its exact distance is not needed.
-struct BoundedTriangle {
-  Vec3 a, b, c, centre;
-  double radius = 0;
-};
-
-BoundedTriangle bounded(const TriMesh& mesh, TriMesh::FaceHandle f) {
-  BoundedTriangle t;
-  geometry::face_points(mesh, f, t.a, t.b, t.c);
-  t.centre = (t.a + t.b + t.c) / 3.0;
-  t.radius = std::max({(t.a - t.centre).norm(), (t.b - t.centre).norm(), (t.c - t.centre).norm()});
-  return t;
-}
-
-// The distance of y to the nearest of the triangles, or `bound` if none is nearer; `hint` (a position in the list,
-// or past its end) is tried first and left at the nearest.
-double nearest_distance(const Vec3& y, const std::vector<BoundedTriangle>& triangles, double bound,
-                        std::size_t& hint) {
-  if (hint < triangles.size()) {
-    const auto& t = triangles[hint];
-    bound = std::min(bound, point_triangle_distance(y, t.a, t.b, t.c));
-  }
-  for (std::size_t i = 0; i < triangles.size(); ++i) {
-    const auto& t = triangles[i];
-    const double reach = bound + t.radius;
-    if (i == hint || (y - t.centre).sqrnorm() >= reach * reach) continue;
-    const double d = point_triangle_distance(y, t.a, t.b, t.c);
-    if (d < bound) {
-      bound = d;
-      hint = i;
-    }
-  }
-  return bound;
-}
-
-double nearest_distance(const Vec3& y, const std::vector<BoundedTriangle>& triangles, double bound) {
-  std::size_t hint = triangles.size();
-  return nearest_distance(y, triangles, bound, hint);
-}
-
-std::vector<BoundedTriangle> bounded(const TriMesh& mesh, const std::vector<TriMesh::FaceHandle>& faces) {
-  std::vector<BoundedTriangle> out;
-  out.reserve(faces.size());
-  for (auto f : faces) out.push_back(bounded(mesh, f));
-  return out;
 }
 
 std::vector<TriMesh::FaceHandle> live_faces(const TriMesh& mesh) {

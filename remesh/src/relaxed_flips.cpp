@@ -25,6 +25,7 @@
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
+#include "bounded_triangles.hpp"
 #include "flips_toward_input.hpp"
 #include "local_region.hpp"
 #include "remesh_geometry.hpp"
@@ -66,49 +67,11 @@ bool on_tip(const TriMesh& input, const Tree& tree, Triangles::const_iterator fi
   return false;
 }
 
-// A remeshed face with the ball around it (a point farther from the centre than a distance plus the radius is not
-// nearer than that distance).
-struct Ball {
-  Vec3 a, b, c, centre;
-  double radius = 0;
-};
-
-void balls_of(const TriMesh& mesh, const std::vector<TriMesh::FaceHandle>& faces, std::vector<Ball>& out) {
-  out.clear();
-  for (auto f : faces) {
-    Ball t;
-    geometry::face_points(mesh, f, t.a, t.b, t.c);
-    t.centre = (t.a + t.b + t.c) / 3.0;
-    t.radius = std::max({(t.a - t.centre).norm(), (t.b - t.centre).norm(), (t.c - t.centre).norm()});
-    out.push_back(t);
-  }
-}
-
-double point_distance(const Vec3& p, const Ball& t) {
-  return (geometry::closest_point_on_triangle(p, t.a, t.b, t.c) - p).norm();
-}
-
-// The position of the face nearest p (-1 if there is none), and its distance in `d`; the face at `hint` (a
-// position, or -1) is measured first.
-int nearest(const Vec3& p, const std::vector<Ball>& faces, int hint, double& d) {
-  d = std::numeric_limits<double>::infinity();
-  int best = -1;
-  if (hint >= 0) d = point_distance(p, faces[static_cast<std::size_t>(hint)]), best = hint;
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    const Ball& t = faces[i];
-    const double reach = d + t.radius;
-    if (static_cast<int>(i) == hint || (best >= 0 && (p - t.centre).sqrnorm() >= reach * reach)) continue;
-    const double x = point_distance(p, t);
-    if (x < d) d = x, best = static_cast<int>(i);
-  }
-  return best;
-}
-
-// Whether one of the faces is within `limit` of p.
-bool within(const Vec3& p, const std::vector<Ball>& faces, double limit) {
-  for (const Ball& t : faces) {
+// Whether one of the triangles is within `limit` of p.
+bool within(const Vec3& p, const std::vector<BoundedTriangle>& triangles, double limit) {
+  for (const auto& t : triangles) {
     const double reach = limit + t.radius;
-    if ((p - t.centre).sqrnorm() <= reach * reach && point_distance(p, t) <= limit) return true;
+    if ((p - t.centre).sqrnorm() <= reach * reach && point_triangle_distance(p, t.a, t.b, t.c) <= limit) return true;
   }
   return false;
 }
@@ -124,14 +87,7 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
     for (std::size_t i = 0; i < std::min(fixed->size(), tip.size()); ++i)
       if ((*fixed)[i]) tip[i] = on_tip(input, tree, first, mesh.point(TriMesh::VertexHandle(static_cast<int>(i))));
   auto at = [&](TriMesh::FaceHandle f) -> double& { return distance[static_cast<std::size_t>(f.idx())]; };
-  std::vector<std::pair<double, int>> order;
-  for (auto e : mesh.edges()) {
-    if (mesh.status(e).deleted() || mesh.is_boundary(e)) continue;
-    const double d = std::max(at(mesh.face_handle(mesh.halfedge_handle(e, 0))),
-                              at(mesh.face_handle(mesh.halfedge_handle(e, 1))));
-    if (d > tolerance) order.emplace_back(-d, e.idx());
-  }
-  std::sort(order.begin(), order.end());
+  const std::vector<std::pair<double, int>> order = far_edges(mesh, distance, tolerance);
   LocalRegion local(emin, emax);
   std::vector<TriMesh::VertexHandle> region, around, variables;
   std::vector<TriMesh::FaceHandle> region_faces, moved_faces;
@@ -139,7 +95,7 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
   std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
   std::vector<Vec3> neighbors, watched;
   std::vector<double> limits, watched_limits;
-  std::vector<Ball> balls, moved_balls, staying;
+  std::vector<BoundedTriangle> balls, moved_balls, staying;
   std::vector<char> moved_mark;
   std::vector<Tree::Primitive_id> input_faces;
   for (const auto& [unused, index] : order) {
@@ -201,7 +157,7 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
     input_faces.clear();
     tree.all_intersected_primitives(box, std::back_inserter(input_faces));
     std::sort(input_faces.begin(), input_faces.end());
-    balls_of(mesh, region_faces, balls);
+    balls = bounded(mesh, region_faces);
     moved_mark.assign(region_faces.size(), 0);
     staying.clear();
     for (std::size_t i = 0; i < region_faces.size(); ++i) {
@@ -210,14 +166,13 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
     }
     watched.clear();
     watched_limits.clear();
-    int hint = -1;  // (the points come in sevens, one input face's: the last one's nearest face is tried first)
+    std::size_t hint = balls.size();  // (the points come in sevens, one input face's: the last one's nearest first)
     for (const auto& t : input_faces) {
       const Vec3 x = to_vec(t->vertex(0)), y = to_vec(t->vertex(1)), z = to_vec(t->vertex(2));
       for (const Vec3& p : {x, y, z, 0.5 * (x + y), 0.5 * (y + z), 0.5 * (z + x), (x + y + z) / 3.0}) {
-        double own = 0;
-        hint = nearest(p, balls, hint, own);
+        const double own = nearest_distance(p, balls, std::numeric_limits<double>::infinity(), hint);
         const double limit = std::max(before, own);
-        if (hint >= 0 && moved_mark[static_cast<std::size_t>(hint)] && !within(p, staying, limit)) {
+        if (hint < balls.size() && moved_mark[hint] && !within(p, staying, limit)) {
           watched.push_back(p);
           watched_limits.push_back(limit);
         }
@@ -250,7 +205,7 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
           kept = face_distance(tree, x, y, z) < limits[k];
         }
         if (kept) {
-          balls_of(mesh, moved_faces, moved_balls);
+          moved_balls = bounded(mesh, moved_faces);
           for (std::size_t k = 0; k < watched.size() && kept; ++k)
             kept = within(watched[k], moved_balls, watched_limits[k]);
         }
