@@ -12,6 +12,7 @@
 
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "flip_quad.hpp"
 #include "local_region.hpp"
 #include "ordered_schedule.hpp"
 #include "per_element.hpp"
@@ -20,16 +21,6 @@
 
 namespace carbonmesh {
 namespace {
-
-struct FlipQuad {
-  TriMesh::VertexHandle a, b, c, d;  // edge a-b, opposite vertices c (left of a->b) and d
-};
-
-FlipQuad quad(const TriMesh& mesh, TriMesh::EdgeHandle e) {
-  const auto h = mesh.halfedge_handle(e, 0), o = mesh.halfedge_handle(e, 1);
-  return {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h),
-          mesh.to_vertex_handle(mesh.next_halfedge_handle(h)), mesh.to_vertex_handle(mesh.next_halfedge_handle(o))};
-}
 
 int sq(int x) { return x * x; }
 

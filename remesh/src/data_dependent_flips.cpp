@@ -40,10 +40,9 @@ bool geometry_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 // E_val may rise by 2 (one vertex pair 6,6 -> 5,7). Seed-protocol models, Hausdorff max at 2M samples: armadillo
 // 0.589 -> 0.477 (6 flips), bunny 0.798 -> 0.647 (2); with 0: armadillo 0.528 (2), bunny no flip; with 4: 0.474
 // (10), 0.647.
-bool flip_valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c,
-                     TriMesh::VertexHandle d) {
+bool flip_valence_ok(const TriMesh& mesh, const FlipQuad& q) {
   int before = 0, after = 0;
-  for (const auto& [v, change] : {std::pair{a, -1}, std::pair{b, -1}, std::pair{c, 1}, std::pair{d, 1}}) {
+  for (const auto& [v, change] : {std::pair{q.a, -1}, std::pair{q.b, -1}, std::pair{q.c, 1}, std::pair{q.d, 1}}) {
     const int off = static_cast<int>(mesh.valence(v)) - ideal_valence(mesh, v);
     const int off_after = off + change;
     if (std::abs(off_after) > std::max(1, std::abs(off))) return false;  // (so no valence under 3 either)
@@ -96,24 +95,17 @@ DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, dou
   for (const auto& [unused, index] : order) {
     const TriMesh::EdgeHandle e(index);
     if (!mesh.is_flip_ok(e)) continue;
-    const auto h = mesh.halfedge_handle(e, 0), o = mesh.halfedge_handle(e, 1);
-    const auto va = mesh.from_vertex_handle(h), vb = mesh.to_vertex_handle(h);
-    const auto vc = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
-    const auto vd = mesh.to_vertex_handle(mesh.next_halfedge_handle(o));
-    const Vec3 a = mesh.point(va), b = mesh.point(vb), c = mesh.point(vc), d = mesh.point(vd);
+    const FlipQuad q = quad(mesh, e);
+    const Vec3 a = mesh.point(q.a), b = mesh.point(q.b), c = mesh.point(q.c), d = mesh.point(q.d);
     const double length = (c - d).norm();
     if (length < emin || length > emax) continue;
-    if (!flip_valence_ok(mesh, va, vb, vc, vd) || !geometry_ok(a, b, c, d)) continue;
-    const auto f0 = mesh.face_handle(h), f1 = mesh.face_handle(o);
+    if (!flip_valence_ok(mesh, q) || !geometry_ok(a, b, c, d)) continue;
+    const auto f0 = mesh.face_handle(mesh.halfedge_handle(e, 0)), f1 = mesh.face_handle(mesh.halfedge_handle(e, 1));
     const double before = std::max(at(f0), at(f1));
     if (std::max(face_distance(tree, a, d, c), face_distance(tree, b, c, d)) >= kGain * before) continue;
     mesh.flip(e);
     ++result.flips;
-    for (auto f : {f0, f1}) {
-      Vec3 x, y, z;
-      geometry::face_points(mesh, f, x, y, z);
-      at(f) = face_distance(tree, x, y, z);
-    }
+    for (auto f : {f0, f1}) at(f) = face_distance(tree, mesh, f);
   }
   if (target)
     relaxed_flips(mesh, input, tree, triangles.begin(), distance, *target, kn, emin, emax, tolerance, fixed, result);

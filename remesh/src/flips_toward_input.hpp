@@ -6,13 +6,13 @@
 #include "carbonmesh/remesh/mesh.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
+#include "flip_quad.hpp"
 
 namespace carbonmesh {
 
-// Whether the valences after the flip of edge a-b (opposite c, d) keep every vertex within one of its ideal valence
-// (or no farther than it was) and E_val (Eq 4.2) within 2 of before.
-bool flip_valence_ok(const TriMesh& mesh, TriMesh::VertexHandle a, TriMesh::VertexHandle b, TriMesh::VertexHandle c,
-                     TriMesh::VertexHandle d);
+// Whether the valences after the flip of the quad's edge a-b keep every vertex within one of its ideal valence (or
+// no farther than it was) and E_val (Eq 4.2) within 2 of before.
+bool flip_valence_ok(const TriMesh& mesh, const FlipQuad& q);
 
 // The interior edges with a face farther than `tolerance` (`distance`: by face index), as (-distance, edge index),
 // farthest first (ties by index).

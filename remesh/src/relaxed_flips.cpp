@@ -94,23 +94,21 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
   std::vector<std::pair<TriMesh::VertexHandle, Vec3>> saved;
   std::vector<std::pair<TriMesh::FaceHandle, Vec3>> normals;
   std::vector<Vec3> neighbors, watched;
-  std::vector<double> limits, watched_limits;
+  std::vector<double> limits, watched_limits, moved_distances;
   std::vector<BoundedTriangle> balls, moved_balls, staying;
   std::vector<char> moved_mark;
   std::vector<Tree::Primitive_id> input_faces;
   for (const auto& [unused, index] : order) {
     const TriMesh::EdgeHandle e(index);
     if (mesh.status(e).deleted() || !mesh.is_flip_ok(e)) continue;
-    const auto h = mesh.halfedge_handle(e, 0), o = mesh.halfedge_handle(e, 1);
-    const auto va = mesh.from_vertex_handle(h), vb = mesh.to_vertex_handle(h);
-    const auto vc = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
-    const auto vd = mesh.to_vertex_handle(mesh.next_halfedge_handle(o));
-    const Vec3 a = mesh.point(va), b = mesh.point(vb), c = mesh.point(vc), d = mesh.point(vd);
+    const FlipQuad q = quad(mesh, e);
+    const TriMesh::VertexHandle vc = q.c, vd = q.d;
+    const Vec3 a = mesh.point(q.a), b = mesh.point(q.b), c = mesh.point(vc), d = mesh.point(vd);
     const double length = (c - d).norm();
     if (length >= emin && length <= emax) continue;  // (data_dependent_flips' case)
     if (length < kShortest * emin || length > kLongest * emax) continue;
-    if (!flip_valence_ok(mesh, va, vb, vc, vd)) continue;
-    const auto f0 = mesh.face_handle(h), f1 = mesh.face_handle(o);
+    if (!flip_valence_ok(mesh, q)) continue;
+    const auto f0 = mesh.face_handle(mesh.halfedge_handle(e, 0)), f1 = mesh.face_handle(mesh.halfedge_handle(e, 1));
     const double before = std::max(at(f0), at(f1)), goal = kGain * before;
     if (std::max(face_distance(tree, a, d, c), face_distance(tree, b, c, d)) >= goal) continue;
     if (result.relaxed_tries == kMaxTries) break;
@@ -199,10 +197,10 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
       const std::size_t flaws = local.flaws(mesh, region);
       if (!folded && flaws <= flaws_before) {
         kept = true;
+        moved_distances.clear();
         for (std::size_t k = 0; k < moved_faces.size() && kept; ++k) {
-          Vec3 x, y, z;
-          geometry::face_points(mesh, moved_faces[k], x, y, z);
-          kept = face_distance(tree, x, y, z) < limits[k];
+          moved_distances.push_back(face_distance(tree, mesh, moved_faces[k]));
+          kept = moved_distances.back() < limits[k];
         }
         if (kept) {
           moved_balls = bounded(mesh, moved_faces);
@@ -217,19 +215,11 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
     if (!kept) {
       for (const auto& [w, p] : saved) mesh.set_point(w, p);
       mesh.flip(e);
-      for (auto f : {f0, f1}) {  // (flipped back, the two faces may hold each other's triangles)
-        Vec3 x, y, z;
-        geometry::face_points(mesh, f, x, y, z);
-        at(f) = face_distance(tree, x, y, z);
-      }
+      for (auto f : {f0, f1}) at(f) = face_distance(tree, mesh, f);  // (flipped back, the two may have swapped)
       continue;
     }
     ++result.relaxed_flips;
-    for (auto f : moved_faces) {
-      Vec3 x, y, z;
-      geometry::face_points(mesh, f, x, y, z);
-      at(f) = face_distance(tree, x, y, z);
-    }
+    for (std::size_t k = 0; k < moved_faces.size(); ++k) at(moved_faces[k]) = moved_distances[k];  // (as checked)
   }
 }
 

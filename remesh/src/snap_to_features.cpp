@@ -224,11 +224,6 @@ struct Worker {
                           around_faces);
   }
 
-  static double distance_to_input(const SnapState& s, TriMesh::FaceHandle f) {
-    Vec3 a, b, c;
-    geometry::face_points(s.mesh, f, a, b, c);
-    return face_distance(*s.input_tree, a, b, c);
-  }
 
   // Whether face f turned against the input's face nearest its centroid (a fold; the face split at an input vertex
   // cannot be the reference: at a tip the new faces rise steeply from it).
@@ -245,7 +240,7 @@ struct Worker {
   // After a move: whether every face it may have changed is nearer the input than `limit` (seven points each).
   bool faces_within(const SnapState& s, double limit) const {
     for (auto f : moved_faces)
-      if (distance_to_input(s, f) >= limit) return false;
+      if (face_distance(*s.input_tree, s.mesh, f) >= limit) return false;
     return true;
   }
 

@@ -50,4 +50,11 @@ inline double face_distance(const Tree& tree, const Vec3& a, const Vec3& b, cons
   return std::sqrt(worst);
 }
 
+// The same for a face of `mesh` (its corners from its halfedge on, as geometry::face_points lists them).
+inline double face_distance(const Tree& tree, const TriMesh& mesh, TriMesh::FaceHandle f) {
+  const auto h0 = mesh.halfedge_handle(f), h1 = mesh.next_halfedge_handle(h0), h2 = mesh.next_halfedge_handle(h1);
+  return face_distance(tree, mesh.point(mesh.to_vertex_handle(h0)), mesh.point(mesh.to_vertex_handle(h1)),
+                       mesh.point(mesh.to_vertex_handle(h2)));
+}
+
 }  // namespace carbonmesh::triangle_tree
