@@ -13,6 +13,8 @@
 #include <tuple>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -1135,6 +1137,41 @@ TEST(Remesher, IsDeterministic) {
     for (auto v : b.fv_range(TriMesh::FaceHandle(f.idx()))) fb.push_back(v.idx());
     ASSERT_EQ(fa, fb);
   }
+}
+
+// The steps' seconds add up to the run's, in the result and in its JSON, and a step turned off took none.
+TEST(Remesher, StepSecondsAddUpToTheRunAndAreZeroForStepsTurnedOff) {
+  auto sum = [](const RemeshStepSeconds& t) {
+    return t.iterations + t.cleanup + t.regularize + t.snap + t.flips + t.surface_fit + t.minimax_fit + t.other;
+  };
+  TriMesh mesh = sphere(3, 2.25);
+  const RemeshResult all = remesh(mesh, RemeshSettings{});
+  ASSERT_TRUE(all.converged);
+  const RemeshStepSeconds& t = all.step_seconds;
+  for (const double step : {t.iterations, t.cleanup, t.regularize, t.snap, t.flips, t.surface_fit, t.minimax_fit,
+                            t.other})
+    EXPECT_GE(step, 0.0);
+  EXPECT_GT(t.iterations, 0.0);
+  EXPECT_GT(t.snap, 0.0);
+  EXPECT_GT(t.minimax_fit, 0.0);
+  EXPECT_NEAR(sum(t), all.seconds, 1e-9);
+  const nlohmann::json j = to_json(all);
+  double json_sum = 0;
+  for (const auto& [name, value] : j.at("step_seconds").items()) json_sum += value.template get<double>();
+  EXPECT_EQ(j.at("step_seconds").size(), 8u);
+  EXPECT_NEAR(json_sum, all.seconds, 1e-9);
+
+  TriMesh again = sphere(3, 2.25);
+  RemeshSettings settings;
+  settings.snap_features = settings.flip_toward_input = settings.fit_surface = settings.minimax_fit = false;
+  const RemeshResult some = remesh(again, settings);
+  ASSERT_TRUE(some.converged);
+  EXPECT_EQ(some.step_seconds.snap, 0.0);
+  EXPECT_EQ(some.step_seconds.flips, 0.0);
+  EXPECT_EQ(some.step_seconds.surface_fit, 0.0);
+  EXPECT_EQ(some.step_seconds.minimax_fit, 0.0);
+  EXPECT_GT(some.step_seconds.regularize, 0.0);
+  EXPECT_NEAR(sum(some.step_seconds), some.seconds, 1e-9);
 }
 
 TEST(Remesher, RejectsAnInvalidInterval) {

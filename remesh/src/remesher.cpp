@@ -386,6 +386,14 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     }
   }
   result.iterations = iteration;
+  RemeshStepSeconds& took = result.step_seconds;
+  double lap = seconds();  // the end of the last step timed
+  auto step_end = [&](double& step) {
+    const double now = seconds();
+    step = now - lap;
+    lap = now;
+  };
+  took.iterations = lap;
   if (edges.long_edges + edges.short_edges > 0 || result.vanished) {
     mesh = best.mesh();
     post_process(mesh, s.kn, s.emin, s.emax);
@@ -402,6 +410,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     if (result.stuck_edges_cleared > 0) after_loop = edge_stats(mesh, interval);
   }
   std::size_t outside = after_loop.long_edges + after_loop.short_edges;
+  step_end(took.cleanup);
   if (restart_input && outside > 0) {
     spdlog::info("remesh: {} long and short edges left where the input had none: kept the input", outside);
     mesh = *restart_input;
@@ -412,6 +421,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   // then the feature snap and the surface fit, which keep them inside too.
   if (outside == 0) {
     spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
+    step_end(took.regularize);
     // Vertices onto the input points the surface cuts off, before the fit, which then keeps them there.
     SnapResult snap;
     if (s.snap_features) {
@@ -439,6 +449,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                       "{} rounds, farthest {:.4f} -> {:.4f}",
                       snap.border_snapped, snap.border_candidates, s.snap_tolerance * s.emin, snap.border_rounds,
                       snap.border_max_before, snap.border_max_after);
+      step_end(took.snap);
     }
     if (s.flip_toward_input) {
       const double t0 = seconds();
@@ -451,6 +462,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                     "vertices around relaxed, farthest face {:.4f} -> {:.4f}, {:.3f}s",
                     flips.flips, flips.candidates, s.snap_tolerance * s.emin, flips.relaxed_flips, flips.relaxed_tries,
                     flips.max_before, flips.max_after, seconds() - t0);
+      step_end(took.flips);
     }
     // The vertices the snap put on features stay there in the fit and the minimax fit.
     const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
@@ -461,6 +473,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.fit_rms_after = fit.rms_after;
       spdlog::debug("surface fit: RMS distance {:.4f} -> {:.4f}, {} offset halvings", fit.rms_before,
                     fit.rms_after, fit.limited);
+      step_end(took.surface_fit);
     }
     if (s.minimax_fit) {
       const double t0 = seconds();
@@ -475,6 +488,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       spdlog::debug("minimax fit: largest sampled distance {:.4f} -> {:.4f}, {} moves at {} spots, {:.3f}s "
                     "(scans {:.3f}s)", minimax.max_before, minimax.max_after, minimax.moves, minimax.spots,
                     seconds() - t0, minimax.scan_seconds);
+      step_end(took.minimax_fit);
     }
   }
   // The topology guard: a final mesh of another surface type is replaced by the best valid one.
@@ -534,6 +548,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     }
   }
   result.seconds = seconds();
+  RemeshStepSeconds& steps = result.step_seconds;  // (result's own: a direct remesh above may have replaced it)
+  steps.other = std::max(0.0, result.seconds - steps.iterations - steps.cleanup - steps.regularize - steps.snap -
+                                  steps.flips - steps.surface_fit - steps.minimax_fit);
   return result;
 }
 
@@ -591,6 +608,14 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"farthest_input", r.farthest_input},
           {"farthest_input_point", {r.farthest_input_point[0], r.farthest_input_point[1], r.farthest_input_point[2]}},
           {"cut_off", r.cut_off},
+          {"step_seconds", {{"iterations", r.step_seconds.iterations},
+                            {"cleanup", r.step_seconds.cleanup},
+                            {"regularize", r.step_seconds.regularize},
+                            {"snap", r.step_seconds.snap},
+                            {"flips", r.step_seconds.flips},
+                            {"surface_fit", r.step_seconds.surface_fit},
+                            {"minimax_fit", r.step_seconds.minimax_fit},
+                            {"other", r.step_seconds.other}}},
           {"log", log}};
   if (r.topology_violation) j["topology_changed"] = to_json(r.changed);
   return j;

@@ -37,6 +37,16 @@ def row(model, method, seconds, rss, s, iterations):
             f"{v['percent_eval_gt1']:.2f} | {h['max']:.4f} | {h['rms']:.4f} | {iterations} |")
 
 
+STEPS = ("iterations", "cleanup", "regularize", "snap", "flips", "surface_fit", "minimax_fit", "other")
+
+
+def step_row(model, result, peer_seconds):
+    """One row of the table of carbonmesh's time by step (RemeshResult::step_seconds), CGAL's time last."""
+    t = result["step_seconds"]
+    return (f"| {model} | " + " | ".join(f"{t[k]:.2f}" for k in STEPS) +
+            f" | {result['seconds']:.2f} | {peer_seconds:.2f} |")
+
+
 def fastest_of(commands, repeat):
     """Runs each command `repeat` times, the commands taking turns (so that a machine slowing down or speeding up
     between runs affects all of them alike); returns (JSON of the fastest run, largest peak RSS in MiB) for each.
@@ -132,7 +142,7 @@ def main():
              "| model | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "
              "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    ratios, turns = [], {}
+    ratios, turns, steps = [], {}, []
     for model in models:
         src = os.path.join(args.models, model + ".off")
         ours, conv = os.path.join(work, model + ".off"), os.path.join(work, model + ".csv")
@@ -145,8 +155,15 @@ def main():
         lines.append(row(model, "CGAL", peer_result["seconds"], peer_rss, stats(cli, theirs, src, repair=True), 10))
         ratios.append((model, result["seconds"] / max(peer_result["seconds"], 1e-9)))
         turns[model] = turn_ratios(result, peer_result)
+        steps.append(step_row(model, result, peer_result["seconds"]))
         print(lines[-2] + "\n" + lines[-1], flush=True)
     lines += ["", ratio_line(ratios, turns), "",
+              "Where carbonmesh's time goes: the seconds of each step in the fastest run above (`step_seconds` of "
+              "`carbonmesh remesh --json`; iterations: the setup and the loop of Algorithm 1; cleanup: the "
+              "post-processing, valence defects and stuck edges after it; other: the topology guard, the final "
+              "figures and the farthest input vertex), beside CGAL's whole run.", "",
+              "| model | iterations | cleanup | regularize | snap | flips | surface fit | minimax fit | other | "
+              "carbonmesh | CGAL |", "|---|---|---|---|---|---|---|---|---|---|---|"] + steps + ["",
               "Convergence curves: " + ", ".join(f"[{m}](img/convergence-{m}.png)" for m in models), ""]
     if not args.no_study and "bunny" in models:
         lines += ["### Parameter study on bunny (Table 5.1 of the dissertation: kl x weights)", "",

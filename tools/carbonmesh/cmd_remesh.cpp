@@ -119,6 +119,11 @@ void add_remesh_command(CLI::App& app, Action& action) {
           file << csv.str();
           if (!file) throw InputError(fmt::format("cannot write {}", tmp.string()));
         });
+      const RemeshStepSeconds& took = result.step_seconds;
+      spdlog::info("remesh time: iterations {:.2f}s, cleanup {:.2f}s, regularize {:.2f}s, snap {:.2f}s, flips {:.2f}s, "
+                   "surface fit {:.2f}s, minimax fit {:.2f}s, other {:.2f}s",
+                   took.iterations, took.cleanup, took.regularize, took.snap, took.flips, took.surface_fit,
+                   took.minimax_fit, took.other);
       if (opt->json) {
         nlohmann::json j = to_json(result);
         j["input"] = opt->in;

@@ -82,6 +82,20 @@ struct RemeshSettings {
   std::function<void(const IterationLog&)> on_iteration;
 };
 
+// Where a remesh's wall time went, in seconds (0 for a step that did not run); the steps add up to
+// RemeshResult::seconds.
+struct RemeshStepSeconds {
+  double iterations = 0;   // the setup, the coarse levels and the loop (Algorithm 1)
+  double cleanup = 0;      // post-processing (4.6), valence defects and stuck edges after the loop
+  double regularize = 0;   // valence flips that keep every edge inside
+  double snap = 0;         // snap_to_features
+  double flips = 0;        // data_dependent_flips, the relaxed ones included
+  double surface_fit = 0;  // fit_to_surface
+  double minimax_fit = 0;  // minimax_fit
+  double other = 0;        // the rest: the topology guard, the final figures, the farthest input vertex, and a first
+                           // attempt from a coarse level that a direct remesh replaced
+};
+
 struct RemeshResult {
   bool converged = false;  // no long and no short edge left
   int iterations = 0;        // at the final interval
@@ -132,6 +146,7 @@ struct RemeshResult {
   double farthest_input = 0;
   Vec3 farthest_input_point{0, 0, 0};
   bool cut_off = false;  // farthest_input > emax
+  RemeshStepSeconds step_seconds;
   std::vector<IterationLog> log;
 };
 
