@@ -120,8 +120,8 @@ void add_remesh_command(CLI::App& app, Action& action) {
           if (!file) throw InputError(fmt::format("cannot write {}", tmp.string()));
         });
       const RemeshStepSeconds& took = result.step_seconds;
-      spdlog::info("remesh time: iterations {:.2f}s, cleanup {:.2f}s, regularize {:.2f}s, snap {:.2f}s, flips {:.2f}s, "
-                   "surface fit {:.2f}s, minimax fit {:.2f}s, other {:.2f}s",
+      spdlog::info("remesh time: iterations {:.3f}s, cleanup {:.3f}s, regularize {:.3f}s, snap {:.3f}s, "
+                   "flips {:.3f}s, surface fit {:.3f}s, minimax fit {:.3f}s, other {:.3f}s",
                    took.iterations, took.cleanup, took.regularize, took.snap, took.flips, took.surface_fit,
                    took.minimax_fit, took.other);
       if (opt->json) {
