@@ -146,7 +146,7 @@ void relaxed_flips(TriMesh& mesh, const TriMesh& input, const Tree& tree, Triang
     // The input points watched: those of the input faces within emax of the moved faces' box (farther, a part of the
     // input was cut off: RemeshResult::farthest_input) that are nearest a moved face (only those can get farther)
     // and have no face that stays within their limit, the larger of the pair's distance and their own. They are
-    // found from the faces as they are now, but only at the first pass that passes the other tests (on bunny 15 of
+    // found from the faces as they are now, but only at the first pass that passes the other tests (on bunny 12 of
     // 20 tries never do; finding them takes about as long as a relaxation).
     CGAL::Bbox_3 box;
     for (auto f : moved_faces)

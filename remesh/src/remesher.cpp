@@ -425,7 +425,6 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // Vertices onto the input points the surface cuts off, before the fit, which then keeps them there.
     SnapResult snap;
     if (s.snap_features) {
-      const double t0 = seconds();
       const TriMesh& surface = input ? *input : *target;
       snap = snap_to_features(mesh, surface, *projection_target, s.kn, s.emin, s.emax, s.snap_tolerance * s.emin);
       result.snapped = true;
@@ -436,10 +435,11 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.snapped_border_vertices = snap.border_snapped;
       result.snap_border_max_before = snap.border_max_before;
       result.snap_border_max_after = snap.border_max_after;
+      step_end(took.snap);
       spdlog::debug("snap to features: {} of {} input vertices farther than {:.4f} snapped in {} rounds ({} moves "
                     "tried), farthest {:.4f} -> {:.4f}, {:.3f}s",
                     snap.snapped, snap.candidates, s.snap_tolerance * s.emin, snap.rounds, snap.tries, snap.max_before,
-                    snap.max_after, seconds() - t0);
+                    snap.max_after, took.snap);
       if (snap.insertion_candidates > 0)
         spdlog::debug("snap to features, insertions: {} vertices inserted at {} of {} input vertices still farther "
                       "than {:.4f}, {:.3f}s", snap.inserted, snap.insertion_tries, snap.insertion_candidates,
@@ -449,20 +449,18 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                       "{} rounds, farthest {:.4f} -> {:.4f}",
                       snap.border_snapped, snap.border_candidates, s.snap_tolerance * s.emin, snap.border_rounds,
                       snap.border_max_before, snap.border_max_after);
-      step_end(took.snap);
     }
     if (s.flip_toward_input) {
-      const double t0 = seconds();
       const DataDependentFlips flips = data_dependent_flips(mesh, input ? *input : *target, s.emin, s.emax,
                                                             s.snap_tolerance * s.emin, projection_target.get(), s.kn,
                                                             snap.fixed.empty() ? nullptr : &snap.fixed);
       result.data_dependent_flips = flips.flips;
       result.relaxed_flips = flips.relaxed_flips;
+      step_end(took.flips);
       spdlog::debug("data-dependent flips: {} of {} edges near faces farther than {:.4f}, {} of {} more with the "
                     "vertices around relaxed, farthest face {:.4f} -> {:.4f}, {:.3f}s",
                     flips.flips, flips.candidates, s.snap_tolerance * s.emin, flips.relaxed_flips, flips.relaxed_tries,
-                    flips.max_before, flips.max_after, seconds() - t0);
-      step_end(took.flips);
+                    flips.max_before, flips.max_after, took.flips);
     }
     // The vertices the snap put on features stay there in the fit and the minimax fit.
     const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
@@ -476,7 +474,6 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       step_end(took.surface_fit);
     }
     if (s.minimax_fit) {
-      const double t0 = seconds();
       MinimaxFitSettings minimax_settings;
       minimax_settings.tolerance = s.snap_tolerance * s.emin;
       const MinimaxFitResult minimax =
@@ -485,10 +482,10 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.minimax_max_before = minimax.max_before;
       result.minimax_max_after = minimax.max_after;
       result.minimax_moves = minimax.moves;
+      step_end(took.minimax_fit);
       spdlog::debug("minimax fit: largest sampled distance {:.4f} -> {:.4f}, {} moves at {} spots, {:.3f}s "
                     "(scans {:.3f}s)", minimax.max_before, minimax.max_after, minimax.moves, minimax.spots,
-                    seconds() - t0, minimax.scan_seconds);
-      step_end(took.minimax_fit);
+                    took.minimax_fit, minimax.scan_seconds);
     }
   }
   // The topology guard: a final mesh of another surface type is replaced by the best valid one.
