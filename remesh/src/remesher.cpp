@@ -545,9 +545,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     }
   }
   result.seconds = seconds();
-  RemeshStepSeconds& steps = result.step_seconds;  // (result's own: a direct remesh above may have replaced it)
-  steps.other = std::max(0.0, result.seconds - steps.iterations - steps.cleanup - steps.regularize - steps.snap -
-                                  steps.flips - steps.surface_fit - steps.minimax_fit);
+  took.other = std::max(0.0, result.seconds - took.iterations - took.cleanup - took.regularize - took.snap -
+                                 took.flips - took.surface_fit - took.minimax_fit);  // (a direct remesh's, if kept)
   return result;
 }
 
