@@ -100,7 +100,15 @@ def main():
     models = sorted(f[:-4] for f in os.listdir(args.models) if f.endswith(".off"))
     if args.only:
         models = [m for m in models if m in args.only]
-    work = tempfile.mkdtemp(prefix="carbonmesh-motions-")
+    with tempfile.TemporaryDirectory(prefix="carbonmesh-motions-") as work:
+        lines = table(cli, peer, args, models, work)
+    replace_section(os.path.join(ROOT, "docs", "benchmarks.md"), "remesh-motions", "\n".join(lines))
+    print("wrote docs/benchmarks.md")
+    return 0
+
+
+def table(cli, peer, args, models, work):
+    """The section's lines; the moved inputs and the remeshes are written to `work`."""
     seeds = list(range(args.motions + 1))
     lines = ["## Remeshing: the same protocol on rigid motions of the models", "",
              f"Machine: {machine_line()}. Each seed-protocol model as given and moved by {args.motions} random rigid "
@@ -151,9 +159,7 @@ def main():
             print(lines[-1], flush=True)
     lines += ["", "The worst of % regular is the lowest; seconds: the median of the runs (one run each, not the "
               "fastest as in the first table).", ""]
-    replace_section(os.path.join(ROOT, "docs", "benchmarks.md"), "remesh-motions", "\n".join(lines))
-    print("wrote docs/benchmarks.md")
-    return 0
+    return lines
 
 
 if __name__ == "__main__":
