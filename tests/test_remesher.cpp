@@ -913,15 +913,16 @@ TEST(Remesher, ACollapsingSurfaceStopsTheLoopAndWhatIsCutOffIsReported) {
 }
 
 // Tips that no move reaches get a vertex of their own. A sphere of radius 10 (mean edge 0.75) with its 12 icosahedron
-// vertices raised by 0.8: moves put remeshed vertices onto 11 of the tips, and the nearest remeshed vertex of the last
-// one stayed 0.85 from it (the move would have to leave that vertex's neighbours behind). A split of the face under
-// it, with flips toward valence 5 and its rings relaxed, reaches it: a remeshed vertex on every tip, every edge inside,
-// no valence off by more than one.
+// vertices raised by 0.85: moves put remeshed vertices onto 11 of the tips, and the last one no move reaches (the
+// move would have to leave that vertex's neighbours behind). A split of the face under it, with flips toward valence
+// 5 and its rings relaxed, reaches it: a remeshed vertex on every tip, every edge inside, no valence off by more than
+// one. (Which tips the moves reach depends on where the loop left the vertices: raised by 0.8, the moves reached all
+// 12 once regularize's chains had four neutral flips, session 35.)
 TEST(SnapToFeatures, GivesATipThatNoMoveReachesAVertexOfItsOwn) {
   TriMesh input = make_icosphere({10.0, 4});
   for (int i = 0; i < 12; ++i) {  // the icosahedron's vertices come first
     const TriMesh::VertexHandle v(i);
-    input.set_point(v, input.point(v) * 1.08);
+    input.set_point(v, input.point(v) * 1.085);
   }
   TriMesh mesh = input;
   const RemeshResult result = remesh(mesh, RemeshSettings{});
@@ -1099,11 +1100,12 @@ TEST(DataDependentFlips, NeverFlipToAnEdgeOutsideTheInterval) {
 
 // The relaxed flips: on a sphere with 4% radial noise remeshed up to the feature snap (no flips, no fits), pairs
 // of faces bridging a groove or cutting a ridge whose other diagonal is outside [1.2, 1.8] are flipped with the
-// vertices around relaxed (measured: 1 of 7 tried kept). Every edge stays inside, and the largest distance to the
-// input (bracketed) does not grow: no point near a kept flip ends farther than the pair was. Without a projection
+// vertices around relaxed (measured: 1 of 9 tried kept; with the noise of seed 1, which the test used until session 35,
+// none of 5 since regularize's chains have four neutral flips). Every edge stays inside, and the largest distance to
+// the input (bracketed) does not grow: no point near a kept flip ends farther than the pair was. Without a projection
 // target none is tried.
 TEST(DataDependentFlips, RelaxTheVerticesAroundWhereTheNewEdgeIsOutsideTheInterval) {
-  const TriMesh input = test::radial_noise(scaled(make_icosphere({10.0, 3}), 1.5), 0.04, 1);
+  const TriMesh input = test::radial_noise(scaled(make_icosphere({10.0, 3}), 1.5), 0.04, 5);
   TriMesh mesh = input;
   RemeshSettings settings;
   settings.flip_toward_input = settings.fit_surface = settings.minimax_fit = false;

@@ -155,7 +155,7 @@ std::size_t correct_valence(TriMesh& mesh, double m, const EdgeInterval* keep) {
 namespace {
 
 // How many E_val-neutral flips may precede the flip that lowers E_val in a chain (regularize).
-constexpr int kChainDepth = 3;
+constexpr int kChainDepth = 4;
 
 // Some vertex of the flip quad is irregular (only then can a flip pair lower E_val).
 bool valence_defect(const FlipQuad& q, const std::vector<int>& valence, const std::vector<int>& ideal) {
