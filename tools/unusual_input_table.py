@@ -34,11 +34,12 @@ def read_off(path):
     return vertices, faces
 
 
-def write_off(path, vertices, faces):
+def write_off(path, vertices, faces, digits=12):
+    """OFF with `digits` significant digits a coordinate (17: every bit of a double)."""
     with open(path, "w") as f:
         f.write("OFF\n%d %d 0\n" % (len(vertices), len(faces)))
         for v in vertices:
-            f.write("%.12g %.12g %.12g\n" % v)
+            f.write(" ".join("%.*g" % (digits, x) for x in v) + "\n")
         for t in faces:
             f.write("3 %d %d %d\n" % t)
 

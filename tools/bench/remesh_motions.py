@@ -21,7 +21,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section, timed  # noqa: E402
 from remesh import PROTOCOL, stats  # noqa: E402
-from unusual_input_table import read_off  # noqa: E402
+from unusual_input_table import read_off, write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 SHIFT = 10.0  # the translations' largest coordinate
@@ -45,16 +45,6 @@ def motion(seed):
 
 def moved(vertices, rotation, shift):
     return [tuple(sum(r[k] * v[k] for k in range(3)) + s for r, s in zip(rotation, shift)) for v in vertices]
-
-
-def write_off(path, vertices, faces):
-    """OFF with every coordinate to the last bit (%.17g)."""
-    with open(path, "w") as f:
-        f.write("OFF\n%d %d 0\n" % (len(vertices), len(faces)))
-        for v in vertices:
-            f.write("%.17g %.17g %.17g\n" % v)
-        for t in faces:
-            f.write("3 %d %d %d\n" % t)
 
 
 def angle_deficit(vertices, faces, i):
@@ -133,7 +123,7 @@ def table(cli, peer, args, models, work):
             src = os.path.join(args.models, model + ".off")
             if seed > 0:  # (the model as given is read from its file: the figures of the first table)
                 src = os.path.join(work, f"{model}-{seed}.off")
-                write_off(src, positions, faces)
+                write_off(src, positions, faces, digits=17)
             ours = os.path.join(work, f"{model}-{seed}-ours.off")
             theirs = os.path.join(work, f"{model}-{seed}-cgal.off")
             out, _, _ = timed([cli, "-q", "remesh", src, ours, "--json"] + PROTOCOL)
