@@ -29,9 +29,7 @@ SHIFT = 10.0  # the translations' largest coordinate
 
 def motion(seed):
     """A rotation uniform over SO(3) (Shoemake's unit quaternion from three uniform numbers) and a shift, both drawn
-    from `seed`; seed 0 is the identity (the model as given)."""
-    if seed == 0:
-        return ((1, 0, 0), (0, 1, 0), (0, 0, 1)), (0, 0, 0)
+    from `seed`."""
     rng = random.Random(seed)
     u1, u2, u3 = rng.random(), rng.random(), rng.random()
     x, y = math.sqrt(1 - u1) * math.sin(2 * math.pi * u2), math.sqrt(1 - u1) * math.cos(2 * math.pi * u2)
@@ -118,11 +116,10 @@ def table(cli, peer, args, models, work):
         runs = {"carbonmesh": [], "CGAL": []}
         worst = None
         for seed in seeds:
-            rotation, shift = motion(seed)
-            positions = moved(vertices, rotation, shift)
-            src = os.path.join(args.models, model + ".off")
-            if seed > 0:  # (the model as given is read from its file: the figures of the first table)
-                src = os.path.join(work, f"{model}-{seed}.off")
+            # Seed 0: the model as given, read from its file (the figures of the first table).
+            positions, src = vertices, os.path.join(args.models, model + ".off")
+            if seed > 0:
+                positions, src = moved(vertices, *motion(seed)), os.path.join(work, f"{model}-{seed}.off")
                 write_off(src, positions, faces, digits=17)
             ours = os.path.join(work, f"{model}-{seed}-ours.off")
             theirs = os.path.join(work, f"{model}-{seed}-cgal.off")
