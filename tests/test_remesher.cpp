@@ -941,6 +941,43 @@ TEST(SnapToFeatures, GivesATipThatNoMoveReachesAVertexOfItsOwn) {
   EXPECT_TRUE(topology(mesh).same_type(topology(input)));
 }
 
+// Twelve cone tips raised by 0.1 of the radius: the snap's moves and single splits leave two of them 1.0 from the
+// remeshed surface (a single split leaves edges outside: too few vertices for the cap). cap_tips gives both a vertex,
+// growing the region with splits and collapses until every edge is inside, and nothing else ends farther from the
+// surface than the tip was: the farthest input vertex falls (1.04 -> 0.35), every edge stays inside, no valence off
+// by more than one. (Raised by 0.12, two tips 1.23 and 1.22 away compete: the cap of one may move the vertex off
+// another, up to the distance it takes away.)
+TEST(CapTips, GivesATipTheSnapLeftAVertexWithTheCapAroundRebuilt) {
+  TriMesh input = make_icosphere({10.0, 4});
+  for (int i = 0; i < 12; ++i) {  // the icosahedron's vertices come first
+    const TriMesh::VertexHandle v(i);
+    input.set_point(v, input.point(v) * 1.1);
+  }
+  TriMesh mesh = input;
+  RemeshSettings settings;
+  settings.cap_tips = settings.flip_toward_input = settings.fit_surface = settings.minimax_fit = false;
+  ASSERT_TRUE(remesh(mesh, settings).converged);
+  const FarthestInputVertex before = farthest_input_vertex(mesh, input);
+  ASSERT_GT(before.distance, 1.0);
+  const std::size_t vertices = mesh.n_vertices();
+  const ProjectionTarget target(input, 4 * settings.emax);
+  std::vector<char> fixed(mesh.n_vertices(), 0);
+  const CapTipsResult caps = cap_tips(mesh, input, target, settings.kn, settings.emin, settings.emax,
+                                      settings.snap_tolerance * settings.emin, fixed);
+  EXPECT_GE(caps.capped, 1u);
+  EXPECT_EQ(static_cast<long>(mesh.n_vertices()) - static_cast<long>(vertices), caps.added);
+  ASSERT_EQ(fixed.size(), mesh.n_vertices());
+  EXPECT_LT(farthest_input_vertex(mesh, input).distance, before.distance - 0.3);
+  std::size_t tips_marked = 0;  // a capped tip is a vertex of the mesh, marked fixed
+  for (auto v : mesh.vertices())
+    if (fixed[static_cast<std::size_t>(v.idx())] && (mesh.point(v) - before.point).norm() < 1e-12) ++tips_marked;
+  EXPECT_EQ(tips_marked, 1u);  // the farthest one among them
+  const EdgeStats edges = edge_stats(mesh, {settings.emin, settings.emax});
+  EXPECT_EQ(edges.long_edges + edges.short_edges, 0u);
+  EXPECT_EQ(valence_stats(mesh).percent_eval_gt1, 0.0);
+  EXPECT_TRUE(topology(mesh).same_type(topology(input)));
+}
+
 // A move onto one input point must not pull the surface away from others. On spheres with 4% radial noise the
 // snap raised the farthest input vertex in 10 of 16 seeds (here from 1.348 to 1.471) before each move was checked
 // against the input vertices nearest its faces (none may end farther than the farthest one was).

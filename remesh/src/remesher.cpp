@@ -435,6 +435,14 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.snapped_border_vertices = snap.border_snapped;
       result.snap_border_max_before = snap.border_max_before;
       result.snap_border_max_after = snap.border_max_after;
+      if (s.cap_tips) {
+        const CapTipsResult caps = cap_tips(mesh, surface, *projection_target, s.kn, s.emin, s.emax,
+                                            s.snap_tolerance * s.emin, snap.fixed);
+        result.capped_tips = caps.capped;
+        result.cap_vertices = caps.added;
+        spdlog::debug("cap tips: {} of {} input vertices capped ({} tried), {} vertices added", caps.capped,
+                      caps.candidates, caps.tries, caps.added);
+      }
       step_end(took.snap);
       spdlog::debug("snap to features: {} of {} input vertices farther than {:.4f} snapped in {} rounds ({} moves "
                     "tried), farthest {:.4f} -> {:.4f}, {:.3f}s",
@@ -594,6 +602,8 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"snapped", r.snapped},
           {"snapped_vertices", r.snapped_vertices},
           {"inserted_vertices", r.inserted_vertices},
+          {"capped_tips", r.capped_tips},
+          {"cap_vertices", r.cap_vertices},
           {"snap_max_before", r.snap_max_before},
           {"snap_max_after", r.snap_max_after},
           {"snapped_border_vertices", r.snapped_border_vertices},

@@ -148,6 +148,10 @@ void add_remesh_command(CLI::App& app, Action& action) {
                                    "vertex {:.4f} -> {:.4f}\n",
                                    result.snapped_vertices, result.inserted_vertices, result.snap_max_before,
                                    result.snap_max_after);
+        if (result.capped_tips > 0)
+          std::cout << fmt::format("tip caps: {} input vertices given a vertex with the cap around rebuilt ({:+} "
+                                   "vertices)\n",
+                                   result.capped_tips, result.cap_vertices);
         if (result.snapped && result.snap_border_max_before > 0)
           std::cout << fmt::format("feature snap, borders: {} border vertices moved onto the input's border, farthest "
                                    "border vertex {:.4f} -> {:.4f}\n",

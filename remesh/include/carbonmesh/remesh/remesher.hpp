@@ -55,6 +55,10 @@ struct RemeshSettings {
   // surface (snap_to_features in remesh_steps.hpp: ear rims, cone tips, grooves), every edge kept inside.
   bool snap_features = true;
   double snap_tolerance = 0.25;  // as a fraction of emin
+  // After the snap, the input vertices it left farthest from the surface get a vertex of their own with the cap around
+  // it rebuilt (cap_tips in remesh_steps.hpp: tips that no move or single split reached), every edge kept inside.
+  // Only with snap_features.
+  bool cap_tips = true;
   // After the snap, flip the diagonals of quads whose faces lie farther than snap_tolerance * emin from the input
   // where the other diagonal follows it (data_dependent_flips in remesh_steps.hpp: grooves, ridges), every edge
   // kept inside and no vertex more than one off its ideal valence; then those whose other diagonal is outside the
@@ -88,7 +92,7 @@ struct RemeshStepSeconds {
   double iterations = 0;   // the setup, the coarse levels and the loop (Algorithm 1)
   double cleanup = 0;      // post-processing (4.6), valence defects and stuck edges after the loop
   double regularize = 0;   // valence flips that keep every edge inside
-  double snap = 0;         // snap_to_features
+  double snap = 0;         // snap_to_features and cap_tips
   double flips = 0;        // data_dependent_flips, the relaxed ones included
   double surface_fit = 0;  // fit_to_surface
   double minimax_fit = 0;  // minimax_fit
@@ -134,7 +138,10 @@ struct RemeshResult {
   bool snapped = false;              // snap_to_features ran (settings.snap_features)
   std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
   std::size_t inserted_vertices = 0;  // vertices it added at input vertices no move reached (a split face each)
-  // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit).
+  std::size_t capped_tips = 0;  // input vertices given a vertex of their own by cap_tips (settings.cap_tips)
+  long cap_vertices = 0;        // vertices it added in all (the tips, less the collapses, plus the splits around)
+  // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit and the
+  // tip caps).
   double snap_max_before = 0, snap_max_after = 0;
   // The same for the input's border vertices (border vertices moved onto the corners of the input's borders).
   std::size_t snapped_border_vertices = 0;

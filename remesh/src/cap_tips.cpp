@@ -1,0 +1,330 @@
+// A vertex at each input tip the feature snap left cut off, with the cap around it rebuilt (not in the dissertation).
+//
+// The snap's insertion splits the face nearest a tip and relaxes kn + 2 rings around it with the snapped vertices
+// held; where the tip rises far from the remeshed surface (bunny's ear tips, 0.6-1.1 away) the region has too few
+// vertices for the cap, edges end 1.8-2.1 long and the insertion is refused. Here the region may grow and the snapped
+// vertices in it may move: after the split, rounds of relaxation (Error_b with the interval hinge, Eq 4.7, projected
+// onto the input), splits of the long edges at their midpoints, collapses of the short ones and flips toward the
+// ideal valences, until every edge of the region is inside. Tried on a copy of the mesh, farthest input vertex first,
+// and kept only if no face has an angle under 3 degrees or turns against the input, no valence is off the ideal by
+// more than one, no input point (vertex or edge midpoint) within the rings ends farther from the surface than it was
+// and than the tip was, and the faces within the rings end no farther from the input (their bracketed bound) than
+// they were and than the tip was: nothing moves beyond the distance the cap takes away.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <memory>
+#include <cmath>
+#include <vector>
+
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/remesh_steps.hpp"
+#include "carbonmesh/remesh/triangle_tree.hpp"
+#include "farthest_point.hpp"
+#include "local_region.hpp"
+#include "remesh_geometry.hpp"
+
+namespace carbonmesh {
+namespace {
+
+using namespace triangle_tree;
+
+constexpr std::size_t kTips = 8;  // the farthest input vertices tried, at most ...
+constexpr double kShare = 0.8;    // ... and those farther than this share of the farthest (as in minimax_fit)
+constexpr int kRounds = 6;        // relax-split-collapse-flip rounds before an attempt is given up
+constexpr int kPasses = 3;        // relax-and-project passes a round
+constexpr int kStalledRounds = 2;  // rounds without fewer flaws than before that end an attempt
+// Rings around the tip in an attempt: kn + 5, and kn + 7 if that leaves edges outside (bunny's ear tips under six
+// rigid motions, measured with a looser acceptance test: with kn + 3 rings 1 of 6 maxima fell, with kn + 5 rings 3,
+// with kn + 7 rings 2, each taking tips where the other left edges outside).
+constexpr std::array<int, 2> kExtraRings = {5, 7};
+constexpr double kTolerance = 1e-4;         // the faces' distance to the input bracketed to within this (as
+constexpr std::size_t kPiecesPerFace = 64;  // carbonmesh stats --ref), with at most this many pieces a face
+
+// Flips of the edges at `vertices` while one lowers E_val (Eq 4.3) and keeps its quad's shape.
+void flips_toward_ideal(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& vertices,
+                        std::vector<TriMesh::EdgeHandle>& edges) {
+  for (int flips = 0, again = 1; again && flips < 200;) {
+    again = 0;
+    edges.clear();
+    for (auto v : vertices)
+      for (auto e : mesh.ve_range(v)) edges.push_back(e);
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    for (auto e : edges) {
+      if (mesh.is_boundary(e) || !mesh.is_flip_ok(e) || valence_improvement(mesh, e) <= 0) continue;
+      const auto h = mesh.halfedge_handle(e, 0);
+      const auto a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
+      const auto c = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
+      const auto d = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h)));
+      if (!geometry::flip_keeps_shape(mesh.point(a), mesh.point(b), mesh.point(c), mesh.point(d))) continue;
+      mesh.flip(e);
+      ++flips;
+      again = 1;
+      break;
+    }
+  }
+}
+
+// How an attempt ended: kept, refused with edges left outside (or faces under 3 degrees), or refused otherwise.
+enum class Outcome { kKept, kFlaws, kRefused };
+
+// What every attempt reads, and its scratch space.
+class TipCapper {
+ public:
+  TipCapper(const Tree& input_tree, const ProjectionTarget& target, double emin, double emax)
+      : input_tree_(input_tree), target_(target), emin_(emin), emax_(emax), local_(emin, emax) {}
+
+  // A vertex at q in a copy of `mesh` (its face `nearest` split there) and the cap around it rebuilt within `rings`
+  // rings; kept, with the copy in m and its fixed vertices in marks, if it passes the tests (see cap_tips()).
+  Outcome attempt(const TriMesh& mesh, const std::vector<char>& fixed, TriMesh::FaceHandle nearest, const Vec3& q,
+                  double distance, int rings, const std::vector<Vec3>& points, TriMesh& m, std::vector<char>& marks) {
+    // Before: the input points within the rings (watched_), their distances to the faces two rings beyond, and the
+    // bound of the faces within the rings.
+    const auto corner = mesh.to_vertex_handle(mesh.halfedge_handle(nearest));
+    local_.collect(mesh, corner, rings, region_);
+    double radius = 0;
+    for (auto v : region_) radius = std::max(radius, (mesh.point(v) - q).norm());
+    watched_.clear();
+    for (const Vec3& p : points)
+      if ((p - q).norm() <= radius) watched_.push_back(p);
+    local_.faces(mesh, region_, faces_);
+    region_triangles(mesh);
+    const double forward_before = forward_bound();
+    local_.collect(mesh, corner, rings + 2, region_);
+    local_.faces(mesh, region_, faces_);
+    region_triangles(mesh);
+    distances_to_region(watched_before_);
+    m = mesh;
+    const auto tip = m.split(nearest, q);
+    // The snapped vertices may move here (held, bunny's ear tips kept their maxima in 4 of 6 motions); one that
+    // moves is no longer on its feature and loses its mark. The tip is held.
+    marks = fixed;
+    marks.resize(m.n_vertices(), 0);
+    marks[static_cast<std::size_t>(tip.idx())] = 1;
+    local_.collect(m, tip, 1, region_);
+    flips_toward_ideal(m, region_, edges_);
+    std::size_t flaws = 0, fewest = std::numeric_limits<std::size_t>::max();
+    for (int round = 0, stalled = 0; round < kRounds; ++round) {
+      local_.collect(m, tip, rings - 1, inner_);
+      variables_.clear();
+      for (auto w : inner_)
+        if (w != tip && !m.is_boundary(w)) variables_.push_back(w);
+      for (int pass = 0; pass < kPasses; ++pass) {
+        optimize_vertices(m, variables_, emin_, emax_);
+        for (auto w : variables_) project_with_ring(m, target_, w, neighbors_);
+      }
+      local_.collect(m, tip, rings, region_);
+      flaws = local_.flaws(m, region_);
+      if (flaws == 0) break;
+      if (flaws < fewest) {
+        fewest = flaws;
+        stalled = 0;
+      } else if (++stalled == kStalledRounds) {
+        break;
+      }
+      // A vertex in the middle of each long edge of the relaxed vertices (on the input), ...
+      collect_edges(m, [&](double l) { return l > emax_; });
+      for (auto e : edges_) {
+        if (m.is_boundary(e)) continue;  // (its middle would leave the border curve)
+        const auto h = m.halfedge_handle(e, 0);
+        const auto w = m.new_vertex(0.5 * (m.point(m.from_vertex_handle(h)) + m.point(m.to_vertex_handle(h))));
+        m.split(e, w);
+        project_with_ring(m, target_, w, neighbors_);
+      }
+      marks.resize(m.n_vertices(), 0);
+      // ... each short one collapsed to its middle (not at the tip or a border), ...
+      collect_edges(m, [&](double l) { return l < emin_; });
+      for (auto e : edges_) {
+        if (m.status(e).deleted() || geometry::edge_length(m, e) >= emin_) continue;
+        const auto h = m.halfedge_handle(e, 0);
+        const auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+        if (a == tip || b == tip || m.is_boundary(a) || m.is_boundary(b)) continue;
+        const Vec3 middle = 0.5 * (m.point(a) + m.point(b));
+        if (!collapse_ok(m, h, middle, emax_)) continue;
+        m.collapse(h);
+        m.set_point(b, middle);
+        project_with_ring(m, target_, b, neighbors_);
+      }
+      // ... and flips toward the ideal valences.
+      local_.collect(m, tip, rings - 1, inner_);
+      flips_toward_ideal(m, inner_, edges_);
+    }
+    if (flaws > 0) {
+      spdlog::debug("cap tips: {} rings, {} flaws left", rings, flaws);
+      return Outcome::kFlaws;
+    }
+    local_.collect(m, tip, rings, region_);
+    for (auto w : region_)
+      if (std::abs(static_cast<int>(m.valence(w)) - ideal_valence(m, w)) > 1) {
+        spdlog::debug("cap tips: {} rings, a valence off the ideal by more than one", rings);
+        return Outcome::kRefused;
+      }
+    local_.faces(m, region_, faces_);
+    for (auto f : faces_) {
+      Vec3 a, b, c;
+      geometry::face_points(m, f, a, b, c);
+      const auto hit = input_tree_.closest_point_and_primitive(to_point((a + b + c) / 3.0));
+      const Triangle& t = *hit.second;
+      const Vec3 normal = geometry::triangle_normal(to_vec(t[0]), to_vec(t[1]), to_vec(t[2]));
+      if (OpenMesh::dot(normal, geometry::triangle_normal(a, b, c)) < -geometry::kMaxNormalTurnCos) {
+        spdlog::debug("cap tips: {} rings, a face turned against the input", rings);
+        return Outcome::kRefused;
+      }
+    }
+    // No watched input point may end farther from the surface than it was and than the tip was, and the faces within
+    // the rings may end no farther from the input than they were and than the tip was.
+    local_.collect(m, tip, rings + 2, region_);
+    local_.faces(m, region_, faces_);
+    region_triangles(m);
+    distances_to_region(watched_after_);
+    std::size_t farther = 0;
+    for (std::size_t i = 0; i < watched_.size(); ++i)
+      farther += watched_after_[i] > std::max(watched_before_[i], distance);
+    if (farther > 0) {
+      spdlog::debug("cap tips: {} rings, {} of {} watched input points farther than they were and than the tip was",
+                    rings, farther, watched_.size());
+      return Outcome::kRefused;
+    }
+    local_.collect(m, tip, rings, region_);
+    local_.faces(m, region_, faces_);
+    region_triangles(m);
+    const double forward_after = forward_bound();
+    spdlog::debug("cap tips: {} rings, the faces' distance bound {:.4f} -> {:.4f} (the tip {:.4f})", rings,
+                  forward_before, forward_after, distance);
+    if (forward_after > std::max(forward_before, distance)) return Outcome::kRefused;
+    for (auto v : m.vertices()) {
+      const auto i = static_cast<std::size_t>(v.idx());
+      if (v != tip && i < mesh.n_vertices() && marks[i] && m.point(v) != mesh.point(v)) marks[i] = 0;
+    }
+    // Without the deleted elements, the marks following their vertices.
+    OpenMesh::VPropHandleT<char> mark;
+    m.add_property(mark);
+    for (auto v : m.vertices()) m.property(mark, v) = marks[static_cast<std::size_t>(v.idx())];
+    m.garbage_collection();
+    marks.assign(m.n_vertices(), 0);
+    for (auto v : m.vertices()) marks[static_cast<std::size_t>(v.idx())] = m.property(mark, v);
+    m.remove_property(mark);
+    return Outcome::kKept;
+  }
+
+ private:
+  // The triangles of faces_, into triangles_.
+  void region_triangles(const TriMesh& mesh) {
+    triangles_.clear();
+    for (auto f : faces_) {
+      Vec3 a, b, c;
+      geometry::face_points(mesh, f, a, b, c);
+      triangles_.emplace_back(to_point(a), to_point(b), to_point(c));
+    }
+  }
+
+  // The distances of the points watched_ to triangles_, into `out`.
+  void distances_to_region(std::vector<double>& out) const {
+    out.assign(watched_.size(), std::numeric_limits<double>::infinity());
+    if (triangles_.empty()) return;
+    Tree tree(triangles_.begin(), triangles_.end());
+    tree.accelerate_distance_queries();
+    for (std::size_t i = 0; i < watched_.size(); ++i) out[i] = std::sqrt(tree.squared_distance(to_point(watched_[i])));
+  }
+
+  // The bound of the distance of triangles_ to the input (bracketed to within kTolerance).
+  double forward_bound() const {
+    return farthest_point(triangles_, input_tree_, kTolerance, kPiecesPerFace * triangles_.size()).bound;
+  }
+
+  // The edges at the relaxed vertices (inner_) whose length passes `select`, into edges_ (each once).
+  template <class Select>
+  void collect_edges(const TriMesh& m, Select select) {
+    edges_.clear();
+    for (auto w : inner_)
+      for (auto e : m.ve_range(w))
+        if (select(geometry::edge_length(m, e))) edges_.push_back(e);
+    std::sort(edges_.begin(), edges_.end());
+    edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+  }
+
+  const Tree& input_tree_;
+  const ProjectionTarget& target_;
+  double emin_, emax_;
+  LocalRegion local_;
+  std::vector<TriMesh::VertexHandle> region_, inner_, variables_;
+  std::vector<TriMesh::FaceHandle> faces_;
+  std::vector<TriMesh::EdgeHandle> edges_;
+  std::vector<Vec3> neighbors_, watched_;
+  std::vector<double> watched_before_, watched_after_;
+  Triangles triangles_;
+};
+
+}  // namespace
+
+CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
+                       double emax, double tolerance, std::vector<char>& fixed) {
+  CapTipsResult result;
+  mesh.garbage_collection();
+  fixed.resize(mesh.n_vertices(), 0);
+  const Triangles input_triangles = triangles_of(input);
+  if (input_triangles.empty() || mesh.n_faces() == 0) return result;
+  Tree input_tree(input_triangles.begin(), input_triangles.end());
+  input_tree.accelerate_distance_queries();
+  // The interior input vertices farther than the tolerance, farthest first (ties by index).
+  std::vector<std::pair<double, int>> far;
+  // The remeshed surface's triangles in face order and their tree (built again after each kept cap).
+  Triangles triangles = triangles_of(mesh);
+  auto tree = std::make_unique<Tree>(triangles.begin(), triangles.end());
+  tree->accelerate_distance_queries();
+  {
+    for (auto v : input.vertices()) {
+      if (input.is_boundary(v)) continue;
+      const double d = std::sqrt(tree->squared_distance(to_point(input.point(v))));
+      if (d > tolerance) far.emplace_back(d, v.idx());
+    }
+  }
+  std::sort(far.begin(), far.end(), [](const auto& x, const auto& y) {
+    return x.first != y.first ? x.first > y.first : x.second < y.second;
+  });
+  // Those that set the largest distance: within kShare of the farthest.
+  while (!far.empty() && far.back().first < kShare * far.front().first) far.pop_back();
+  if (far.size() > kTips) far.resize(kTips);
+  result.candidates = far.size();
+  // The input points watched: its vertices and edge midpoints.
+  std::vector<Vec3> points;
+  for (auto v : input.vertices()) points.push_back(input.point(v));
+  for (auto e : input.edges()) {
+    const auto h = input.halfedge_handle(e, 0);
+    points.push_back(0.5 * (input.point(input.from_vertex_handle(h)) + input.point(input.to_vertex_handle(h))));
+  }
+  TipCapper capper(input_tree, target, emin, emax);
+  TriMesh capped;
+  std::vector<char> marks;
+  for (const auto& [distance, index] : far) {
+    const Vec3 q = input.point(TriMesh::VertexHandle(index));
+    // The face nearest q, on the mesh as earlier caps left it.
+    const auto hit = tree->closest_point_and_primitive(to_point(q));
+    const TriMesh::FaceHandle nearest(static_cast<int>(hit.second - triangles.cbegin()));
+    const double nearest_d = (to_vec(hit.first) - q).norm();
+    if (nearest_d <= tolerance) continue;
+    ++result.tries;
+    bool kept = false;
+    for (const int extra : kExtraRings) {
+      const Outcome outcome = capper.attempt(mesh, fixed, nearest, q, nearest_d, kn + extra, points, capped, marks);
+      kept = outcome == Outcome::kKept;
+      if (outcome != Outcome::kFlaws) break;  // more rings only where edges were left outside
+    }
+    spdlog::debug("cap tips: input vertex {}, {:.4f} from the surface: {}", index, distance,
+                  kept ? "capped" : "refused");
+    if (!kept) continue;
+    ++result.capped;
+    result.added += static_cast<long>(capped.n_vertices()) - static_cast<long>(mesh.n_vertices());
+    std::swap(mesh, capped);
+    std::swap(fixed, marks);
+    triangles = triangles_of(mesh);
+    tree = std::make_unique<Tree>(triangles.begin(), triangles.end());
+    tree->accelerate_distance_queries();
+  }
+  return result;
+}
+
+}  // namespace carbonmesh
