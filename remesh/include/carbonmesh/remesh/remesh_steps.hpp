@@ -255,7 +255,8 @@ struct CapTipsResult {
   std::size_t capped = 0;      // given a vertex of their own, kept
   long added = 0;  // vertices added, net (the tips and the splits of long edges, less the collapses of short ones)
 };
-// The interior input vertices farthest from `mesh` (at most 8, farther than `tolerance` and than 0.8 of the farthest)
+// The interior input vertices farthest from `mesh` (at most 8, farther than `tolerance` and than 0.8 of the farthest,
+// those farther than emax left: a part of the input cut off)
 // each get a vertex of their own: the face nearest one is split there, and the vertices within kn + 4 rings (kn + 6
 // if edges were left outside) are relaxed (Error_b with the interval hinge, projected onto `target`), with splits
 // of their long edges, collapses of their short ones and flips toward the ideal valences, in up to 6 rounds. Kept only
