@@ -100,8 +100,8 @@ class TipCapper {
     distances_to_region(watched_before_);
     m = mesh;
     const auto tip = m.split(nearest, q);
-    // The snapped vertices may move here (held, bunny's ear tips kept their maxima in 4 of 6 motions); one that
-    // moves is no longer on its feature and loses its mark. The tip is held.
+    // The snapped vertices may move here (held, they left bunny's maxima higher on 3 of its 6 benchmark runs); one
+    // that moves is no longer on its feature and loses its mark. The tip is held.
     marks = fixed;
     marks.resize(m.n_vertices(), 0);
     marks[static_cast<std::size_t>(tip.idx())] = 1;
@@ -270,18 +270,16 @@ CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarg
   if (input_triangles.empty() || mesh.n_faces() == 0) return result;
   Tree input_tree(input_triangles.begin(), input_triangles.end());
   input_tree.accelerate_distance_queries();
-  // The interior input vertices farther than the tolerance, farthest first (ties by index).
-  std::vector<std::pair<double, int>> far;
   // The remeshed surface's triangles in face order and their tree (built again after each kept cap).
   Triangles triangles = triangles_of(mesh);
   auto tree = std::make_unique<Tree>(triangles.begin(), triangles.end());
   tree->accelerate_distance_queries();
-  {
-    for (auto v : input.vertices()) {
-      if (input.is_boundary(v)) continue;
-      const double d = std::sqrt(tree->squared_distance(to_point(input.point(v))));
-      if (d > tolerance) far.emplace_back(d, v.idx());
-    }
+  // The interior input vertices farther than the tolerance, farthest first (ties by index).
+  std::vector<std::pair<double, int>> far;
+  for (auto v : input.vertices()) {
+    if (input.is_boundary(v)) continue;
+    const double d = std::sqrt(tree->squared_distance(to_point(input.point(v))));
+    if (d > tolerance) far.emplace_back(d, v.idx());
   }
   std::sort(far.begin(), far.end(), [](const auto& x, const auto& y) {
     return x.first != y.first ? x.first > y.first : x.second < y.second;
