@@ -255,15 +255,15 @@ struct CapTipsResult {
   std::size_t capped = 0;      // given a vertex of their own, kept
   long added = 0;  // vertices added, net (the tips and the splits of long edges, less the collapses of short ones)
 };
-// The interior input vertices farthest from `mesh` (at most 8, farther than `tolerance` and than 0.8 of the farthest,
-// those farther than emax left: a part of the input cut off)
-// each get a vertex of their own: the face nearest one is split there, and the vertices within kn + 4 rings (kn + 6
-// if edges were left outside) are relaxed (Error_b with the interval hinge, projected onto `target`), with splits
-// of their long edges, collapses of their short ones and flips toward the ideal valences, in up to 6 rounds. Kept only
-// if the region then has every edge in [emin, emax], no face under 3 degrees or turned against the input, no valence
-// off the ideal by more than one, no input vertex or edge midpoint within it farther from the surface than it was and
-// than the tip was, and its faces' distance to the input (bracketed) no larger than it was and than the tip's.
-// Vertices marked in `fixed` (the snap's) may move, and lose their mark if they do; the tips are marked.
+// The interior input vertices farthest from `mesh` (at most 8, farther than `tolerance` and than 0.8 of the farthest;
+// none if the farthest is more than emax away: a part of the input cut off) each get a vertex of their own: the face
+// nearest one is split there, and the vertices within kn + 4 rings (kn + 6 if edges were left outside) are relaxed
+// (Error_b with the interval hinge, projected onto `target`), with splits of their long edges, collapses of their short
+// ones and flips toward the ideal valences, in up to 6 rounds. Kept only if the region then has every edge in [emin,
+// emax], no face under 3 degrees or turned against the input, no valence off the ideal by more than one, no input
+// vertex or edge midpoint within it farther from the surface than it was and than the tip was, and its faces' distance
+// to the input (bracketed) no larger than it was and than the tip's. Vertices marked in `fixed` (the snap's) may move,
+// and lose their mark if they do; the tips are marked.
 CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                        double emax, double tolerance, std::vector<char>& fixed);
 
