@@ -912,6 +912,16 @@ TEST(Remesher, ACollapsingSurfaceStopsTheLoopAndWhatIsCutOffIsReported) {
   EXPECT_EQ(bridged.iterations, 40);
 }
 
+// A sphere of radius 10 (icosphere, 4 subdivisions) with its 12 icosahedron vertices moved out by `factor`: cone tips.
+TriMesh sphere_with_raised_tips(double factor) {
+  TriMesh input = make_icosphere({10.0, 4});
+  for (int i = 0; i < 12; ++i) {  // the icosahedron's vertices come first
+    const TriMesh::VertexHandle v(i);
+    input.set_point(v, input.point(v) * factor);
+  }
+  return input;
+}
+
 // Tips that no move reaches get a vertex of their own. A sphere of radius 10 (mean edge 0.75) with its 12 icosahedron
 // vertices raised by 0.85: moves put remeshed vertices onto 11 of the tips, and the last one no move reaches (the
 // move would have to leave that vertex's neighbours behind). A split of the face under it, with flips toward valence
@@ -919,11 +929,7 @@ TEST(Remesher, ACollapsingSurfaceStopsTheLoopAndWhatIsCutOffIsReported) {
 // one. (Which tips the moves reach depends on where the loop left the vertices: raised by 0.8, the moves reached all
 // 12 once regularize's chains had four neutral flips, session 35.)
 TEST(SnapToFeatures, GivesATipThatNoMoveReachesAVertexOfItsOwn) {
-  TriMesh input = make_icosphere({10.0, 4});
-  for (int i = 0; i < 12; ++i) {  // the icosahedron's vertices come first
-    const TriMesh::VertexHandle v(i);
-    input.set_point(v, input.point(v) * 1.085);
-  }
+  const TriMesh input = sphere_with_raised_tips(1.085);
   TriMesh mesh = input;
   const RemeshResult result = remesh(mesh, RemeshSettings{});
   ASSERT_TRUE(result.converged);
@@ -948,11 +954,7 @@ TEST(SnapToFeatures, GivesATipThatNoMoveReachesAVertexOfItsOwn) {
 // by more than one. (Raised by 0.12, two tips 1.23 and 1.22 away compete: the cap of one may move the vertex off
 // another, up to the distance it takes away.)
 TEST(CapTips, GivesATipTheSnapLeftAVertexWithTheCapAroundRebuilt) {
-  TriMesh input = make_icosphere({10.0, 4});
-  for (int i = 0; i < 12; ++i) {  // the icosahedron's vertices come first
-    const TriMesh::VertexHandle v(i);
-    input.set_point(v, input.point(v) * 1.1);
-  }
+  const TriMesh input = sphere_with_raised_tips(1.1);
   TriMesh mesh = input;
   RemeshSettings settings;
   settings.cap_tips = settings.flip_toward_input = settings.fit_surface = settings.minimax_fit = false;
