@@ -19,10 +19,12 @@
 #include <cmath>
 #include <vector>
 
+#include "carbonmesh/remesh/garbage_collection.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "carbonmesh/remesh/triangle_tree.hpp"
 #include "farthest_point.hpp"
+#include "flip_quad.hpp"
 #include "local_region.hpp"
 #include "remesh_geometry.hpp"
 
@@ -56,11 +58,8 @@ void flips_toward_ideal(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>&
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     for (auto e : edges) {
       if (mesh.is_boundary(e) || !mesh.is_flip_ok(e) || valence_improvement(mesh, e) <= 0) continue;
-      const auto h = mesh.halfedge_handle(e, 0);
-      const auto a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
-      const auto c = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
-      const auto d = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h)));
-      if (!geometry::flip_keeps_shape(mesh.point(a), mesh.point(b), mesh.point(c), mesh.point(d))) continue;
+      const FlipQuad q = quad(mesh, e);
+      if (!geometry::flip_keeps_shape(mesh.point(q.a), mesh.point(q.b), mesh.point(q.c), mesh.point(q.d))) continue;
       mesh.flip(e);
       ++flips;
       again = 1;
@@ -204,7 +203,7 @@ class TipCapper {
     OpenMesh::VPropHandleT<char> mark;
     m.add_property(mark);
     for (auto v : m.vertices()) m.property(mark, v) = marks[static_cast<std::size_t>(v.idx())];
-    m.garbage_collection();
+    collect_garbage(m);
     marks.assign(m.n_vertices(), 0);
     for (auto v : m.vertices()) marks[static_cast<std::size_t>(v.idx())] = m.property(mark, v);
     m.remove_property(mark);
@@ -264,7 +263,7 @@ class TipCapper {
 CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                        double emax, double tolerance, std::vector<char>& fixed) {
   CapTipsResult result;
-  mesh.garbage_collection();
+  collect_garbage(mesh);
   fixed.resize(mesh.n_vertices(), 0);
   const Triangles input_triangles = triangles_of(input);
   if (input_triangles.empty() || mesh.n_faces() == 0) return result;
