@@ -14,9 +14,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <memory>
-#include <cmath>
+#include <optional>
 #include <vector>
 
 #include "carbonmesh/remesh/garbage_collection.hpp"
@@ -27,6 +28,7 @@
 #include "flip_quad.hpp"
 #include "local_region.hpp"
 #include "remesh_geometry.hpp"
+#include "turned_against_input.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -163,17 +165,11 @@ class TipCapper {
         return Outcome::kRefused;
       }
     local_.faces(m, region_, faces_);
-    for (auto f : faces_) {
-      Vec3 a, b, c;
-      geometry::face_points(m, f, a, b, c);
-      const auto hit = input_tree_.closest_point_and_primitive(to_point((a + b + c) / 3.0));
-      const Triangle& t = *hit.second;
-      const Vec3 normal = geometry::triangle_normal(to_vec(t[0]), to_vec(t[1]), to_vec(t[2]));
-      if (OpenMesh::dot(normal, geometry::triangle_normal(a, b, c)) < -geometry::kMaxNormalTurnCos) {
+    for (auto f : faces_)
+      if (turned_against_input(input_tree_, m, f)) {
         spdlog::debug("cap tips: {} rings, a face turned against the input", rings);
         return Outcome::kRefused;
       }
-    }
     // No watched input point may end farther from the surface than it was and than the tip was, and the faces within
     // the rings may end no farther from the input than they were and than the tip was.
     local_.collect(m, tip, rings + 2, region_);
@@ -261,14 +257,13 @@ class TipCapper {
 }  // namespace
 
 CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
-                       double emax, double tolerance, std::vector<char>& fixed) {
+                       double emax, double tolerance, std::vector<char>& fixed, const SurfaceTree* input_tree) {
   CapTipsResult result;
   collect_garbage(mesh);
   fixed.resize(mesh.n_vertices(), 0);
-  const Triangles input_triangles = triangles_of(input);
-  if (input_triangles.empty() || mesh.n_faces() == 0) return result;
-  Tree input_tree(input_triangles.begin(), input_triangles.end());
-  input_tree.accelerate_distance_queries();
+  if (input.n_faces() == 0 || mesh.n_faces() == 0) return result;
+  std::optional<SurfaceTree> own;
+  const SurfaceTree& input_surface = input_tree ? *input_tree : own.emplace(input);
   // The remeshed surface's triangles in face order and their tree (built again after each kept cap).
   Triangles triangles = triangles_of(mesh);
   auto tree = std::make_unique<Tree>(triangles.begin(), triangles.end());
@@ -298,7 +293,7 @@ CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarg
     const auto h = input.halfedge_handle(e, 0);
     points.push_back(0.5 * (input.point(input.from_vertex_handle(h)) + input.point(input.to_vertex_handle(h))));
   }
-  TipCapper capper(input_tree, target, emin, emax);
+  TipCapper capper(input_surface.tree(), target, emin, emax);
   TriMesh capped;
   std::vector<char> marks;
   for (const auto& [distance, index] : far) {

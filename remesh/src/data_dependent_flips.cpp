@@ -13,6 +13,7 @@
 // rises by at most 2 (flip_valence_ok).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -67,13 +68,12 @@ std::vector<std::pair<double, int>> far_edges(const TriMesh& mesh, const std::ve
 
 DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, double emin, double emax,
                                         double tolerance, const ProjectionTarget* target, int kn,
-                                        const std::vector<char>* fixed) {
+                                        const std::vector<char>* fixed, const SurfaceTree* input_tree) {
   DataDependentFlips result;
-  const Triangles triangles = triangles_of(input);
-  if (triangles.empty() || mesh.n_faces() == 0) return result;
-  Tree tree(triangles.begin(), triangles.end());
-  tree.build();
-  tree.accelerate_distance_queries();
+  if (input.n_faces() == 0 || mesh.n_faces() == 0) return result;
+  std::optional<SurfaceTree> own;
+  const SurfaceTree& input_surface = input_tree ? *input_tree : own.emplace(input);
+  const Tree& tree = input_surface.tree();
   std::vector<double> distance(mesh.n_faces(), 0.0);
   const int nf = static_cast<int>(mesh.n_faces());
 #pragma omp parallel for schedule(dynamic, 256)
@@ -108,7 +108,7 @@ DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, dou
     for (auto f : {f0, f1}) at(f) = face_distance(tree, mesh, f);
   }
   if (target)
-    relaxed_flips(mesh, input, tree, triangles.begin(), distance, *target, kn, emin, emax, tolerance, fixed, result);
+    relaxed_flips(mesh, input, tree, input_surface.first(), distance, *target, kn, emin, emax, tolerance, fixed, result);
   for (const double d : distance) result.max_after = std::max(result.max_after, d);
   return result;
 }

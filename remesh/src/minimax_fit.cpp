@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
@@ -521,13 +522,14 @@ class Region {
 }  // namespace
 
 MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
-                             const MinimaxFitSettings& settings, const std::vector<char>* fixed) {
+                             const MinimaxFitSettings& settings, const std::vector<char>* fixed,
+                             const SurfaceTree* surface_tree) {
   MinimaxFitResult result;
   if (mesh.n_faces() == 0 || surface.n_faces() == 0) return result;
-  const Triangles input_triangles = triangles_of(surface);
-  Tree input_tree(input_triangles.begin(), input_triangles.end());
-  input_tree.build();  // before the threads query it
-  input_tree.accelerate_distance_queries();
+  std::optional<SurfaceTree> own;  // (built before the threads query it)
+  const SurfaceTree& input_surface = surface_tree ? *surface_tree : own.emplace(surface);
+  const Triangles& input_triangles = input_surface.triangles();
+  const Tree& input_tree = input_surface.tree();
   ScanMemory memory;
   std::vector<char> moved;  // by face index: a corner moved in the last round's searches
   std::vector<Vec3> positions;

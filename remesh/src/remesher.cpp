@@ -17,6 +17,7 @@
 #include "carbonmesh/remesh/garbage_collection.hpp"
 #include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "carbonmesh/remesh/triangle_tree.hpp"
 #include "remesh_geometry.hpp"
 
 namespace carbonmesh {
@@ -422,11 +423,16 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   if (outside == 0) {
     spdlog::debug("regularize: {} flips", regularize(mesh, *projection_target, s.kn, s.emin, s.emax));
     step_end(took.regularize);
+    // The steps below measure against the input: its tree is built once for all of them.
+    const TriMesh& surface = input ? *input : *target;
+    std::optional<triangle_tree::SurfaceTree> surface_tree;
+    if (s.snap_features || s.flip_toward_input || s.fit_surface || s.minimax_fit) surface_tree.emplace(surface);
+    const triangle_tree::SurfaceTree* tree = surface_tree ? &*surface_tree : nullptr;
     // Vertices onto the input points the surface cuts off, before the fit, which then keeps them there.
     SnapResult snap;
     if (s.snap_features) {
-      const TriMesh& surface = input ? *input : *target;
-      snap = snap_to_features(mesh, surface, *projection_target, s.kn, s.emin, s.emax, s.snap_tolerance * s.emin);
+      snap = snap_to_features(mesh, surface, *projection_target, s.kn, s.emin, s.emax, s.snap_tolerance * s.emin,
+                              tree);
       result.snapped = true;
       result.snapped_vertices = snap.snapped;
       result.inserted_vertices = snap.inserted;
@@ -437,7 +443,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.snap_border_max_after = snap.border_max_after;
       if (s.cap_tips) {
         const CapTipsResult caps = cap_tips(mesh, surface, *projection_target, s.kn, s.emin, s.emax,
-                                            s.snap_tolerance * s.emin, snap.fixed);
+                                            s.snap_tolerance * s.emin, snap.fixed, tree);
         result.capped_tips = caps.capped;
         result.cap_vertices = caps.added;
         spdlog::debug("cap tips: {} of {} input vertices capped ({} tried), {} vertices added", caps.capped,
@@ -459,9 +465,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                       snap.border_max_before, snap.border_max_after);
     }
     if (s.flip_toward_input) {
-      const DataDependentFlips flips = data_dependent_flips(mesh, input ? *input : *target, s.emin, s.emax,
-                                                            s.snap_tolerance * s.emin, projection_target.get(), s.kn,
-                                                            snap.fixed.empty() ? nullptr : &snap.fixed);
+      const DataDependentFlips flips = data_dependent_flips(mesh, surface, s.emin, s.emax, s.snap_tolerance * s.emin,
+                                                            projection_target.get(), s.kn,
+                                                            snap.fixed.empty() ? nullptr : &snap.fixed, tree);
       result.data_dependent_flips = flips.flips;
       result.relaxed_flips = flips.relaxed_flips;
       step_end(took.flips);
@@ -473,7 +479,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // The vertices the snap put on features stay there in the fit and the minimax fit.
     const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
     if (s.fit_surface) {
-      const SurfaceFitResult fit = fit_to_surface(mesh, input ? *input : *target, s.emin, s.emax, {}, snapped);
+      const SurfaceFitResult fit = fit_to_surface(mesh, surface, s.emin, s.emax, {}, snapped, tree);
       result.fitted = true;
       result.fit_rms_before = fit.rms_before;
       result.fit_rms_after = fit.rms_after;
@@ -485,7 +491,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       MinimaxFitSettings minimax_settings;
       minimax_settings.tolerance = s.snap_tolerance * s.emin;
       const MinimaxFitResult minimax =
-          minimax_fit(mesh, input ? *input : *target, s.emin, s.emax, minimax_settings, snapped);
+          minimax_fit(mesh, surface, s.emin, s.emax, minimax_settings, snapped, tree);
       result.minimax_fitted = true;
       result.minimax_max_before = minimax.max_before;
       result.minimax_max_after = minimax.max_after;

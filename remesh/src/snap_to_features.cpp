@@ -21,10 +21,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <condition_variable>
+#include <cstdlib>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -35,6 +36,7 @@
 #include "local_region.hpp"
 #include "remesh_geometry.hpp"
 #include "threads.hpp"
+#include "turned_against_input.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -225,18 +227,6 @@ struct Worker {
   }
 
 
-  // Whether face f turned against the input's face nearest its centroid (a fold; the face split at an input vertex
-  // cannot be the reference: at a tip the new faces rise steeply from it).
-  static bool against_input(const SnapState& s, TriMesh::FaceHandle f) {
-    Vec3 a, b, c;
-    geometry::face_points(s.mesh, f, a, b, c);
-    const auto nearest = s.input_tree->closest_point_and_primitive(to_point((a + b + c) / 3.0));
-    const Triangle& t = *nearest.second;
-    auto vec = [](const Point& p) { return Vec3(p.x(), p.y(), p.z()); };
-    const Vec3 normal = geometry::triangle_normal(vec(t[0]), vec(t[1]), vec(t[2]));
-    return OpenMesh::dot(normal, geometry::face_normal(s.mesh, f)) < -geometry::kMaxNormalTurnCos;
-  }
-
   // After a move: whether every face it may have changed is nearer the input than `limit` (seven points each).
   bool faces_within(const SnapState& s, double limit) const {
     for (auto f : moved_faces)
@@ -388,8 +378,10 @@ struct Worker {
     bool kept = valences && try_snap(s, nv, q, flaws_before, distance);
     remeasure = false;
     const bool bounds_changed = kept;
-    if (kept) {  // try_snap compares the faces with themselves after the split: the new ones with the input here
-      for (auto f : mesh.vf_range(nv)) kept = kept && !against_input(s, f);
+    // try_snap compares the faces with themselves after the split: the new ones are compared with the input here (a
+    // fold; the face split at an input vertex cannot be the reference: at a tip the new faces rise steeply from it).
+    if (kept) {
+      for (auto f : mesh.vf_range(nv)) kept = kept && !turned_against_input(*s.input_tree, mesh, f);
       if (kept) return true;
       for (auto it = saved.rbegin(); it != saved.rend(); ++it) mesh.set_point(it->first, it->second);
       s.fixed[static_cast<std::size_t>(nv.idx())] = 0;
@@ -579,7 +571,7 @@ FarthestInputVertex farthest_input_vertex(const TriMesh& mesh, const TriMesh& in
 }
 
 SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
-                            double emax, double tolerance) {
+                            double emax, double tolerance, const SurfaceTree* input_tree) {
   SnapResult result;
   mesh.garbage_collection();  // face indices = positions in triangles_of
   const InputPoints points = input_points(input, /*edges=*/true);
@@ -591,13 +583,9 @@ SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const Projectio
   state.visits.assign(nv, 0);
   state.next_near.assign(points.points.size(), -1);
   measure_input(mesh, points, points.all, state.distances);
-  const Triangles input_triangles = triangles_of(input);
-  Tree input_tree(input_triangles.begin(), input_triangles.end());
-  if (!input_triangles.empty()) {  // (else no input vertex is measured and no move is tried)
-    input_tree.build();
-    input_tree.accelerate_distance_queries();
-  }
-  state.input_tree = &input_tree;
+  // (With no input triangle no input vertex is measured and no move is tried.)
+  std::optional<SurfaceTree> own;
+  state.input_tree = &(input_tree ? *input_tree : own.emplace(input)).tree();
   std::vector<Distance>& distances = state.distances;
   std::vector<Worker> workers;
   for (int t = 0; t < max_threads(); ++t) workers.emplace_back(emin, emax);

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
@@ -112,13 +113,12 @@ std::vector<Vec3> unit_vertex_normals(const TriMesh& mesh) {
 }  // namespace
 
 SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
-                                const SurfaceFitSettings& settings, const std::vector<char>* fixed) {
+                                const SurfaceFitSettings& settings, const std::vector<char>* fixed,
+                                const SurfaceTree* surface_tree) {
   SurfaceFitResult result;
-  const Triangles triangles = triangles_of(surface);
-  if (triangles.empty() || mesh.n_faces() == 0) return result;
-  Tree tree(triangles.begin(), triangles.end());
-  tree.build();
-  tree.accelerate_distance_queries();
+  if (surface.n_faces() == 0 || mesh.n_faces() == 0) return result;
+  std::optional<SurfaceTree> own;
+  const Tree& tree = (surface_tree ? *surface_tree : own.emplace(surface)).tree();
   const std::size_t n = mesh.n_vertices();
   std::vector<Vec3> start(n);
   for (auto v : mesh.vertices()) start[static_cast<std::size_t>(v.idx())] = mesh.point(v);

@@ -15,6 +15,12 @@
 
 namespace carbonmesh {
 
+namespace triangle_tree {
+class SurfaceTree;
+}
+// The steps after Algorithm 1 that measure against the input take its tree as `input_tree` where the caller has one
+// (remesh() builds it once for all of them; it must be the tree of `input`), and otherwise build their own.
+
 // ---- stellar_operations.cpp (section 4.1) -------------------------------------------------------------
 
 // The intermediate interval [e^i_min, e^i_max] of section 4.1 from the current mean edge length m_i; on a mesh
@@ -236,7 +242,7 @@ struct SnapResult {
 // valences, no valence off it by more than one, no new face turned against the input); `mesh` is then without
 // deleted elements, and `fixed` covers the new vertices.
 SnapResult snap_to_features(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
-                            double emax, double tolerance);
+                            double emax, double tolerance, const triangle_tree::SurfaceTree* input_tree = nullptr);
 
 struct FarthestInputVertex {
   double distance = 0;  // to the remeshed surface
@@ -265,7 +271,8 @@ struct CapTipsResult {
 // to the input (bracketed) no larger than it was and than the tip's. Vertices marked in `fixed` (the snap's) may move,
 // and lose their mark if they do; the tips are marked.
 CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
-                       double emax, double tolerance, std::vector<char>& fixed);
+                       double emax, double tolerance, std::vector<char>& fixed,
+                       const triangle_tree::SurfaceTree* input_tree = nullptr);
 
 // ---- data_dependent_flips.cpp ------------------------------------------------------------------------------
 
@@ -290,7 +297,8 @@ struct DataDependentFlips {
 // degrees) stay; the others may move, their input vertices being watched like every input point.
 DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, double emin, double emax,
                                         double tolerance, const ProjectionTarget* target = nullptr, int kn = 2,
-                                        const std::vector<char>* fixed = nullptr);
+                                        const std::vector<char>* fixed = nullptr,
+                                        const triangle_tree::SurfaceTree* input_tree = nullptr);
 
 // ---- spatial_order.cpp ----------------------------------------------------------------------------------
 
@@ -354,7 +362,8 @@ struct SurfaceFitResult {
 // least (sparse normal equations, conjugate gradients); edges inside [emin, emax] before stay inside.
 // Vertices with (*fixed)[index] != 0 stay where they are.
 SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
-                                const SurfaceFitSettings& settings = {}, const std::vector<char>* fixed = nullptr);
+                                const SurfaceFitSettings& settings = {}, const std::vector<char>* fixed = nullptr,
+                                const triangle_tree::SurfaceTree* input_tree = nullptr);
 
 // ---- minimax_fit.cpp: the largest distance to the input lowered where it is set (after the surface fit) ---------
 
@@ -376,6 +385,7 @@ struct MinimaxFitResult {
 // inside [emin, emax] before stay inside. Border vertices, and those with (*fixed)[index] != 0, stay where they are.
 // The output does not depend on the thread count.
 MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
-                             const MinimaxFitSettings& settings = {}, const std::vector<char>* fixed = nullptr);
+                             const MinimaxFitSettings& settings = {}, const std::vector<char>* fixed = nullptr,
+                             const triangle_tree::SurfaceTree* input_tree = nullptr);
 
 }  // namespace carbonmesh

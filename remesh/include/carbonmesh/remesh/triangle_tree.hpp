@@ -39,6 +39,30 @@ inline Triangles triangles_of(const TriMesh& mesh) {
   return out;
 }
 
+// A surface's triangles and their tree, built once for closest-point queries (from any thread): the remesher's
+// steps after Algorithm 1 share the input's.
+class SurfaceTree {
+ public:
+  explicit SurfaceTree(const TriMesh& surface)
+      : triangles_(triangles_of(surface)), tree_(triangles_.begin(), triangles_.end()) {
+    if (!triangles_.empty()) {
+      tree_.build();
+      tree_.accelerate_distance_queries();
+    }
+  }
+  SurfaceTree(const SurfaceTree&) = delete;
+  SurfaceTree& operator=(const SurfaceTree&) = delete;
+
+  const Tree& tree() const { return tree_; }
+  const Triangles& triangles() const { return triangles_; }
+  // The face index of a primitive: the triangles are in face order.
+  Triangles::const_iterator first() const { return triangles_.begin(); }
+
+ private:
+  Triangles triangles_;  // (before tree_, which keeps iterators into it)
+  Tree tree_;
+};
+
 // The largest distance to the tree's surface of seven points of the triangle a, b, c: its centroid, its edge
 // midpoints and the points a third of the way from the centroid to each corner.
 inline double face_distance(const Tree& tree, const Vec3& a, const Vec3& b, const Vec3& c) {
