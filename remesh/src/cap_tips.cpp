@@ -267,14 +267,22 @@ CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarg
   // The remeshed surface's triangles in face order and their tree (built again after each kept cap).
   Triangles triangles = triangles_of(mesh);
   auto tree = std::make_unique<Tree>(triangles.begin(), triangles.end());
+  tree->build();  // before the threads query it
   tree->accelerate_distance_queries();
   // The interior input vertices farther than the tolerance, farthest first (ties by index).
-  std::vector<std::pair<double, int>> far;
-  for (auto v : input.vertices()) {
-    if (input.is_boundary(v)) continue;
-    const double d = std::sqrt(tree->squared_distance(to_point(input.point(v))));
-    if (d > tolerance) far.emplace_back(d, v.idx());
+  std::vector<TriMesh::VertexHandle> interior;
+  for (auto v : input.vertices())
+    if (!input.is_boundary(v)) interior.push_back(v);
+  std::vector<double> to_surface(interior.size());
+  const int ni = static_cast<int>(interior.size());
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (int i = 0; i < ni; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    to_surface[k] = std::sqrt(tree->squared_distance(to_point(input.point(interior[k]))));
   }
+  std::vector<std::pair<double, int>> far;
+  for (std::size_t k = 0; k < interior.size(); ++k)
+    if (to_surface[k] > tolerance) far.emplace_back(to_surface[k], interior[k].idx());
   std::sort(far.begin(), far.end(), [](const auto& x, const auto& y) {
     return x.first != y.first ? x.first > y.first : x.second < y.second;
   });
