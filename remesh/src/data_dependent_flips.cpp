@@ -108,7 +108,8 @@ DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, dou
     for (auto f : {f0, f1}) at(f) = face_distance(tree, mesh, f);
   }
   if (target)
-    relaxed_flips(mesh, input, tree, input_surface.first(), distance, *target, kn, emin, emax, tolerance, fixed, result);
+    relaxed_flips(mesh, input, tree, input_surface.first(), distance, *target, kn, emin, emax, tolerance, fixed,
+                  result);
   for (const double d : distance) result.max_after = std::max(result.max_after, d);
   return result;
 }
