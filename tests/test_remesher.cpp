@@ -361,6 +361,27 @@ TEST(ProjectionTarget, ProjectionOntoAnotherTargetDoesNotUseTheNearestVerticesOf
   }
 }
 
+// projection() with `keep` (the remesher's guard against a nonlinear phase that the projection undoes): a sphere
+// of radius 10 projected onto one of radius 11 would stretch every edge by 10%, beyond an interval that holds them
+// now. Kept, no move adds an edge outside, so the count cannot rise; vertices still move toward the target.
+TEST(ProjectionTarget, ProjectionThatKeepsAnIntervalPutsNoMoreEdgesOutsideIt) {
+  const TriMesh target = make_icosphere({11.0, 4});
+  const TriMesh start = make_icosphere({10.0, 3});
+  const EdgeStats lengths = edge_stats(start);
+  const EdgeInterval keep{lengths.min, 1.05 * lengths.max};
+  ASSERT_EQ(edge_stats(start, keep).long_edges + edge_stats(start, keep).short_edges, 0u);
+  const ProjectionTarget onto(target);
+  TriMesh free = start, kept = start;
+  projection(onto, free);
+  projection(onto, kept, /*only_moved=*/false, &keep);
+  const EdgeStats after_free = edge_stats(free, keep), after_kept = edge_stats(kept, keep);
+  EXPECT_GT(after_free.long_edges, 0u);  // the interval does bind here
+  EXPECT_EQ(after_kept.long_edges + after_kept.short_edges, 0u);
+  double farthest = 0;
+  for (auto v : kept.vertices()) farthest = std::max(farthest, kept.point(v).norm());
+  EXPECT_GT(farthest, 10.1);  // some vertices moved (outward, toward the target), fully or part of the way
+}
+
 // A cube of 12 triangles (a CAD export) with side 46.72 and the interval [1.9676, 2.9514]: longest-edge bisection
 // makes each face a grid of right isosceles triangles with legs 2.065 and hypotenuses 2.92, every edge inside and
 // vertices of valence 4 and 8. The remesher used to stop there (0 iterations; at --atoms 20000, 98% of the

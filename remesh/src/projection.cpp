@@ -203,7 +203,19 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   return best;
 }
 
-void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved) {
+namespace {
+// How many edges of v would lie outside `keep` with v at `at` (its neighbours where they are now).
+int edges_outside(const TriMesh& mesh, TriMesh::VertexHandle v, const Vec3& at, const EdgeInterval& keep) {
+  int outside = 0;
+  for (auto w : mesh.vv_range(v)) {
+    const double length = (mesh.point(w) - at).norm();
+    outside += length < keep.emin || length > keep.emax ? 1 : 0;
+  }
+  return outside;
+}
+}  // namespace
+
+void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved, const EdgeInterval* keep) {
   const int n = static_cast<int>(mesh.n_vertices());
   // Where each vertex was put by the previous projection onto the same target ([3] = 1: valid). A vertex
   // still there lies on the target, and Algorithm 4 would return it in place: it is skipped.
@@ -240,6 +252,19 @@ void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved) 
     if (!changed[static_cast<std::size_t>(i)]) continue;
     const TriMesh::VertexHandle v(i);
     const Vec3& q = projected[static_cast<std::size_t>(i)];
+    // (In vertex order, each against its neighbours as projected so far: the same result on any thread count.)
+    if (keep != nullptr) {
+      const Vec3 p = mesh.point(v);
+      const int before = edges_outside(mesh, v, p, *keep);
+      if (edges_outside(mesh, v, q, *keep) > before) {
+        for (const double t : {0.5, 0.25})
+          if (const Vec3 r = p + t * (q - p); edges_outside(mesh, v, r, *keep) <= before) {
+            mesh.set_point(v, r);
+            break;
+          }
+        continue;
+      }
+    }
     mesh.set_point(v, q);
     mesh.property(last, v) = {q[0], q[1], q[2], 1.0};
   }

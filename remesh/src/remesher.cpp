@@ -63,6 +63,7 @@ void check_size(const TriMesh& mesh, const RemeshSettings& s) {
 }
 
 constexpr int kStallIterations = 5;
+constexpr int kRisingIterations = 3;
 constexpr double kReorderShare = 0.2;
 constexpr int kCoarseIterations = 50;
 constexpr std::size_t kCoarseCheckSamples = 20000;  // input samples that check a post-processed coarse level
@@ -264,6 +265,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   std::size_t churn = 0;
   std::size_t lowest = std::numeric_limits<std::size_t>::max();
   int stalled = 0;
+  int rising = 0;        // nonlinear iterations in a row that ended with more long+short edges than they began with
+  bool guarded = false;  // projection(..., keep = interval) after the nonlinear optimizer
   int best_iteration = 0;  // the iteration that gave the best mesh (0: the start)
   double l = s.l;  // the share of long+short edges (percent) that starts the nonlinear phase; raised once on a stall
   while ((edges.long_edges + edges.short_edges > 0 || (iteration == 0 && irregular)) && iteration < s.iterations) {
@@ -328,12 +331,21 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     else
       low_pass_filter(mesh, s.kl, s.weights, m);
     const double t_project = seconds();
-    projection(*projection_target, mesh, /*only_moved=*/true);
+    projection(*projection_target, mesh, /*only_moved=*/true, nonlinear && guarded ? &interval : nullptr);
     spdlog::debug("iteration {}: {} {:.3f}s, projection {:.3f}s", iteration + 1,
                   nonlinear ? "nonlinear optimizer" : "low-pass filter", t_project - t_smooth, seconds() - t_project);
     ++iteration;
 
     edges = edge_stats(mesh, interval);
+    if (nonlinear && !guarded) {
+      rising = edges.long_edges + edges.short_edges > troubling_now ? rising + 1 : 0;
+      if (rising >= kRisingIterations) {
+        guarded = true;
+        spdlog::info("remesh: long and short edges rose in {} nonlinear iterations in a row (to {}): from "
+                     "iteration {} on, the projection keeps the nonlinear optimizer's edges inside the interval",
+                     kRisingIterations, edges.long_edges + edges.short_edges, iteration + 1);
+      }
+    }
     const ValenceStats valence = valence_stats(mesh);
     IterationLog log;
     log.iteration = iteration;

@@ -173,7 +173,10 @@ class ProjectionTarget {
 // `only_moved`, vertices still where the previous projection onto this target put them are skipped
 // (they lie on the target already); the remembered positions live in a vertex property that
 // forget_projection() removes (call it when the target changes or the mesh is handed back).
-void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false);
+// With `keep`, a vertex whose projection would put more of its edges outside that interval than lie outside it now
+// stays where it is (and is tried again by the next projection).
+void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false,
+                const EdgeInterval* keep = nullptr);
 // The vertex properties of projection(): where each vertex was put (x, y, z, 1) and its NearestTargetVertices
 // (spatial_order() moves them with their vertices), and the mesh property naming the target those were searched
 // on (a projection onto another target starts them over).
