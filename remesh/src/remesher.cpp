@@ -337,8 +337,8 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     ++iteration;
 
     edges = edge_stats(mesh, interval);
-    if (nonlinear && !guarded) {
-      rising = edges.long_edges + edges.short_edges > troubling_now ? rising + 1 : 0;
+    if (!guarded) {
+      rising = nonlinear && edges.long_edges + edges.short_edges > troubling_now ? rising + 1 : 0;
       if (rising >= kRisingIterations) {
         guarded = true;
         spdlog::info("remesh: long and short edges rose in {} nonlinear iterations in a row (to {}): from "

@@ -174,7 +174,8 @@ class ProjectionTarget {
 // (they lie on the target already); the remembered positions live in a vertex property that
 // forget_projection() removes (call it when the target changes or the mesh is handed back).
 // With `keep`, a vertex whose projection would put more of its edges outside that interval than lie outside it now
-// stays where it is (and is tried again by the next projection).
+// goes half or a quarter of the way instead where that does not, or stays (and is tried again by the next
+// projection).
 void projection(const ProjectionTarget& target, TriMesh& mesh, bool only_moved = false,
                 const EdgeInterval* keep = nullptr);
 // The vertex properties of projection(): where each vertex was put (x, y, z, 1) and its NearestTargetVertices
