@@ -1,6 +1,7 @@
 #pragma once
 // Small geometric helpers shared by the remesher steps (internal).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "carbonmesh/remesh/mesh.hpp"
@@ -19,6 +20,18 @@ inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 inline double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 0.5 * OpenMesh::cross(b - a, c - a).norm();
+}
+
+// Barycentric coordinates of p (on the triangle's plane) in the triangle a, b, c; the centroid's for a
+// degenerate one.
+inline std::array<double, 3> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 u = b - a, v = c - a, w = p - a;
+  const double uu = OpenMesh::dot(u, u), uv = OpenMesh::dot(u, v), vv = OpenMesh::dot(v, v);
+  const double wu = OpenMesh::dot(w, u), wv = OpenMesh::dot(w, v);
+  const double det = uu * vv - uv * uv;
+  if (!(det > 1e-12 * uu * vv)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
+  const double beta = (vv * wu - uv * wv) / det, gamma = (uu * wv - uv * wu) / det;
+  return {1 - beta - gamma, beta, gamma};
 }
 
 // Smallest interior angle (radians) of a triangle; 0 for a degenerate one.

@@ -495,8 +495,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.fitted = true;
       result.fit_rms_before = fit.rms_before;
       result.fit_rms_after = fit.rms_after;
-      spdlog::debug("surface fit: RMS distance {:.4f} -> {:.4f}, {} offset halvings", fit.rms_before,
-                    fit.rms_after, fit.limited);
+      spdlog::debug("surface fit: RMS distance {:.4f} -> {:.4f}, the input's {:.4f} -> {:.4f}, {} CG iterations, {} "
+                    "settling sweeps, {} halvings", fit.rms_before, fit.rms_after, fit.input_rms_before,
+                    fit.input_rms_after, fit.solver_iterations, fit.settle_sweeps, fit.limited);
       step_end(took.surface_fit);
     }
     if (s.minimax_fit) {

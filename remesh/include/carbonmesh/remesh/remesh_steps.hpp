@@ -353,18 +353,24 @@ int post_process(TriMesh& mesh, int kn, double emin, double emax);
 // ---- surface_fit.cpp: least-squares fit of the remeshed surface to the input (after Algorithm 1) ---------
 
 struct SurfaceFitSettings {
-  int rounds = 2;           // linearise-and-solve rounds
-  double max_offset = 0.4;  // largest move of a vertex off its place, as a fraction of emin
+  int rounds = 2;              // linearise-and-solve rounds
+  double max_offset = 0.4;     // largest move of a vertex off its place, as a fraction of emin
+  double edge_stiffness = 0.3;  // weight of an edge's length change, against a sample's squared distance
+  int settle_sweeps = 20;      // sweeps moving edges the solve took out of [emin, emax] back in, each round
 };
 
 struct SurfaceFitResult {
   double rms_before = 0, rms_after = 0;  // area-weighted RMS distance of the faces' quadrature points to the input
-  std::size_t limited = 0;               // offset halvings that kept an edge inside [emin, emax]
+  double input_rms_before = 0, input_rms_after = 0;  // the same for the input's faces' points to the mesh
+  std::size_t limited = 0;           // displacement halvings that kept an edge inside [emin, emax]
+  std::size_t solver_iterations = 0;  // conjugate-gradient iterations, all rounds
+  std::size_t settle_sweeps = 0;      // sweeps moving edges back into the interval, all rounds
 };
 
-// Moves every vertex along its normal so that the squared distance between the triangles and `surface` is
-// least (sparse normal equations, conjugate gradients); edges inside [emin, emax] before stay inside.
-// Vertices with (*fixed)[index] != 0 stay where they are.
+// Moves every interior vertex in space so that the squared distance between the triangles and `surface`, both
+// ways, plus a penalty on the edges' length changes, is least (sparse normal equations in 3x3 blocks, conjugate
+// gradients); edges inside [emin, emax] before stay inside. Border vertices and those with (*fixed)[index] != 0
+// stay where they are.
 SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
                                 const SurfaceFitSettings& settings = {}, const std::vector<char>* fixed = nullptr,
                                 const triangle_tree::SurfaceTree* input_tree = nullptr);
