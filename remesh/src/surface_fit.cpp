@@ -98,39 +98,70 @@ Faces faces_of(const TriMesh& mesh) {
 // The closest input point of each sample of the previous evaluation: the hint of the next search.
 using Hints = std::vector<Tree::Point_and_primitive_id>;
 
-// The mesh's side: the quadrature points of every face to the input, along the normal of the closest input face
-// (parallel over faces; each sample writes its own slot, so the result does not depend on the thread count).
-std::vector<Sample> mesh_samples(const Faces& faces, const Tree& input, Hints& hints) {
-  const std::size_t count = faces.triangles.size();
-  std::vector<Sample> samples(kPoints * count);
-  const bool hinted = hints.size() == samples.size();
-  if (!hinted) hints.resize(samples.size());
-  const int n = static_cast<int>(count);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int i = 0; i < n; ++i) {
-    const Triangle& t = faces.triangles[static_cast<std::size_t>(i)];
-    const Vec3 p0 = to_vec(t[0]), p1 = to_vec(t[1]), p2 = to_vec(t[2]);
-    const Vec3 face_normal = geometry::triangle_normal(p0, p1, p2);
-    const double area = geometry::triangle_area(p0, p1, p2);
-    for (std::size_t q = 0; q < kPoints; ++q) {
-      const auto& b = kQuadrature[q];
-      const Vec3 x = b[0] * p0 + b[1] * p1 + b[2] * p2;
-      const std::size_t slot = kPoints * static_cast<std::size_t>(i) + q;
-      auto& hint = hints[slot];
-      // Without a hint from the previous evaluation, the face's previous point gives one (it is near).
-      if (hinted) hint = input.closest_point_and_primitive(to_point(x), hint);
-      else if (q > 0) hint = input.closest_point_and_primitive(to_point(x), hints[slot - 1]);
-      else hint = input.closest_point_and_primitive(to_point(x));
-      const auto& [closest, primitive] = hint;
-      const Triangle& s = *primitive;
-      Vec3 ns = to_vec(CGAL::ORIGIN + CGAL::cross_product(s[1] - s[0], s[2] - s[0]));
-      const double l = ns.norm();
-      ns = l > 0 ? ns / l : face_normal;
-      if (OpenMesh::dot(ns, face_normal) < 0) ns = -ns;
-      samples[slot] = {i, b, ns, area / static_cast<double>(kPoints), OpenMesh::dot(x - to_vec(closest), ns)};
-    }
+// The mesh's side of face i: its quadrature points to the input, along the normal of the closest input face.
+// hints[kPoints i + q] holds point q's closest input point of the last evaluation, the start of the next search;
+// without one (hinted false), the face's previous point gives one (it is near).
+std::array<Sample, kPoints> face_samples(const Faces& faces, std::size_t i, const Tree& input, Hints& hints,
+                                         bool hinted) {
+  const Triangle& t = faces.triangles[i];
+  const Vec3 p0 = to_vec(t[0]), p1 = to_vec(t[1]), p2 = to_vec(t[2]);
+  const Vec3 face_normal = geometry::triangle_normal(p0, p1, p2);
+  const double weight = geometry::triangle_area(p0, p1, p2) / static_cast<double>(kPoints);
+  std::array<Sample, kPoints> samples;
+  for (std::size_t q = 0; q < kPoints; ++q) {
+    const auto& b = kQuadrature[q];
+    const Vec3 x = b[0] * p0 + b[1] * p1 + b[2] * p2;
+    const std::size_t slot = kPoints * i + q;
+    auto& hint = hints[slot];
+    if (hinted) hint = input.closest_point_and_primitive(to_point(x), hint);
+    else if (q > 0) hint = input.closest_point_and_primitive(to_point(x), hints[slot - 1]);
+    else hint = input.closest_point_and_primitive(to_point(x));
+    const auto& [closest, primitive] = hint;
+    const Triangle& s = *primitive;
+    Vec3 ns = to_vec(CGAL::ORIGIN + CGAL::cross_product(s[1] - s[0], s[2] - s[0]));
+    const double l = ns.norm();
+    ns = l > 0 ? ns / l : face_normal;
+    if (OpenMesh::dot(ns, face_normal) < 0) ns = -ns;
+    samples[q] = {static_cast<int>(i), b, ns, weight, OpenMesh::dot(x - to_vec(closest), ns)};
   }
   return samples;
+}
+
+// Sizes the hints for the faces; true if they hold the last evaluation's points.
+bool prepare_hints(const Faces& faces, Hints& hints) {
+  const std::size_t size = kPoints * faces.triangles.size();
+  if (hints.size() == size) return true;
+  hints.resize(size);
+  return false;
+}
+
+// The sum of w r^2 and of w over a set of samples.
+struct Sums {
+  double squared = 0, weight = 0;
+  void add(const Sample& s) {
+    squared += s.weight * s.residual * s.residual;
+    weight += s.weight;
+  }
+  void add(const Sums& o) {
+    squared += o.squared;
+    weight += o.weight;
+  }
+  double rms() const { return weight > 0 ? std::sqrt(squared / weight) : 0.0; }
+};
+
+// The area-weighted RMS distance of the mesh's quadrature points to the input (parallel over faces, summed in face
+// order: the result does not depend on the thread count).
+double mesh_rms(const Faces& faces, const Tree& input, Hints& hints) {
+  const bool hinted = prepare_hints(faces, hints);
+  std::vector<Sums> sums(faces.triangles.size());
+  const int n = static_cast<int>(sums.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int i = 0; i < n; ++i)
+    for (const Sample& s : face_samples(faces, static_cast<std::size_t>(i), input, hints, hinted))
+      sums[static_cast<std::size_t>(i)].add(s);
+  Sums total;
+  for (const Sums& face : sums) total.add(face);
+  return total.rms();
 }
 
 // The input's side: its quadrature points (fixed: the input does not move).
@@ -187,12 +218,9 @@ std::vector<Sample> input_samples(const Faces& faces, const std::vector<InputPoi
 }
 
 double weighted_rms(const std::vector<Sample>& samples) {
-  double sum = 0, weight = 0;
-  for (const auto& s : samples) {
-    sum += s.weight * s.residual * s.residual;
-    weight += s.weight;
-  }
-  return weight > 0 ? std::sqrt(sum / weight) : 0.0;
+  Sums sums;
+  for (const Sample& s : samples) sums.add(s);
+  return sums.rms();
 }
 
 using Block = std::array<double, 9>;  // row-major 3x3
@@ -302,10 +330,10 @@ void add_sample(FaceTerms& terms, const Sample& s) {
   }
 }
 
-// The samples' terms added to the system: computed per face in parallel (a face's mesh samples and the input
-// samples closest to it), a chunk of faces at a time, and added in face order (the sums do not depend on the
-// thread count); the corners that stay get none.
-void add_samples(BlockSystem& system, const Faces& faces, const std::vector<Sample>& forward,
+// The terms of both sides added to the system: computed per face in parallel (the face's own quadrature points,
+// evaluated here, and the input's points closest to it), a chunk of faces at a time, and added in face order (the
+// sums do not depend on the thread count); the corners that stay get none. Returns the mesh side's sums.
+Sums add_samples(BlockSystem& system, const Faces& faces, const Tree& input, Hints& hints,
                  const std::vector<Sample>& backward, const std::vector<char>& moves) {
   const std::size_t count = faces.corners.size();
   std::vector<std::size_t> first(count + 1, 0), order(backward.size());  // the input samples by face
@@ -315,19 +343,27 @@ void add_samples(BlockSystem& system, const Faces& faces, const std::vector<Samp
     std::vector<std::size_t> next(first.begin(), first.end() - 1);
     for (std::size_t i = 0; i < backward.size(); ++i) order[next[static_cast<std::size_t>(backward[i].face)]++] = i;
   }
+  const bool hinted = prepare_hints(faces, hints);
   constexpr std::size_t kChunk = 4096;
   std::vector<FaceTerms> terms(std::min(kChunk, count));
+  std::vector<Sums> sums(terms.size());
+  Sums total;
   for (std::size_t begin = 0; begin < count; begin += kChunk) {
     const int size = static_cast<int>(std::min(kChunk, count - begin));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 64)
     for (int j = 0; j < size; ++j) {
       const std::size_t f = begin + static_cast<std::size_t>(j);
       FaceTerms& t = terms[static_cast<std::size_t>(j)];
       t = FaceTerms{};
-      for (std::size_t q = kPoints * f; q < kPoints * (f + 1); ++q) add_sample(t, forward[q]);
+      sums[static_cast<std::size_t>(j)] = Sums{};
+      for (const Sample& s : face_samples(faces, f, input, hints, hinted)) {
+        add_sample(t, s);
+        sums[static_cast<std::size_t>(j)].add(s);
+      }
       for (std::size_t k = first[f]; k < first[f + 1]; ++k) add_sample(t, backward[order[k]]);
     }
     for (std::size_t j = 0; j < static_cast<std::size_t>(size); ++j) {
+      total.add(sums[j]);
       const auto& corner = faces.corners[begin + j];
       const FaceTerms& t = terms[j];
       for (std::size_t a = 0; a < 3; ++a) {
@@ -341,6 +377,7 @@ void add_samples(BlockSystem& system, const Faces& faces, const std::vector<Samp
       }
     }
   }
+  return total;
 }
 
 // The edge terms: stiffness (|e| - |e_start| + u_e . (d_j - d_i))^2 for every edge (i, j), u_e its direction,
@@ -469,19 +506,17 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
   std::vector<Sample> backward;
   for (int round = 0; round < settings.rounds; ++round) {
     const Faces faces = faces_of(mesh);
-    const std::vector<Sample> forward = mesh_samples(faces, input.tree(), hints);
     backward = input_samples(faces, points, backward);
+    // Normal equations of min sum_s w_s (r_s + g_s . d)^2 + sum_edges mu w (|e| - |e_start| + u_e . d)^2
+    // + lambda w |d|^2, w the mean weight of the mesh's samples.
+    BlockSystem system(mesh);
+    const Sums forward = add_samples(system, faces, input.tree(), hints, backward, moves);
     if (round == 0) {
-      result.rms_before = weighted_rms(forward);
+      result.rms_before = forward.rms();
       result.input_rms_before = weighted_rms(backward);
     }
-    // Normal equations of min sum_s w_s (r_s + g_s . d)^2 + sum_edges mu w (|e| - |e_start| + u_e . d)^2
-    // + lambda w |d|^2, w the mean sample weight.
-    BlockSystem system(mesh);
-    add_samples(system, faces, forward, backward, moves);
-    double mean_weight = 0;
-    for (const auto& s : forward) mean_weight += s.weight;
-    mean_weight /= static_cast<double>(std::max<std::size_t>(1, forward.size()));
+    const double mean_weight =
+        forward.weight / static_cast<double>(std::max<std::size_t>(1, kPoints * faces.corners.size()));
     add_edge_terms(system, mesh, start, moves, settings.edge_stiffness * mean_weight);
     for (std::size_t i = 0; i < n; ++i) {  // Tikhonov term; a vertex that stays has only it (and no right side)
       Block& block = system.block(static_cast<int>(i), static_cast<int>(i));
@@ -511,7 +546,7 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
 
   result.limited = keep_interval(mesh, start, moves, emin, emax);
   const Faces faces = faces_of(mesh);
-  result.rms_after = weighted_rms(mesh_samples(faces, input.tree(), hints));
+  result.rms_after = mesh_rms(faces, input.tree(), hints);
   result.input_rms_after = weighted_rms(input_samples(faces, points, backward));
   return result;
 }
