@@ -71,7 +71,7 @@ struct Sample {
   int face = -1;
   std::array<double, 3> bary{};
   Vec3 direction{0, 0, 0};
-  double weight = 0;  // area / kPoints
+  double weight = 0;  // its face's area over the face's number of points
   double residual = 0;
 };
 
