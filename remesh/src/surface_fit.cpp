@@ -84,18 +84,13 @@ struct Faces {
 Faces faces_of(const TriMesh& mesh) {
   Faces out;
   out.corners.reserve(mesh.n_faces());
-  for (auto f : mesh.faces()) {
-    if (mesh.status(f).deleted()) continue;
+  for (auto f : mesh.faces()) {  // the order of triangles_of
     std::array<int, 3> v{};
     int k = 0;
     for (auto w : mesh.fv_range(f)) v[static_cast<std::size_t>(k++)] = w.idx();
     out.corners.push_back(v);
   }
-  out.triangles.reserve(out.corners.size());
-  for (const auto& c : out.corners)
-    out.triangles.emplace_back(to_point(mesh.point(TriMesh::VertexHandle(c[0]))),
-                               to_point(mesh.point(TriMesh::VertexHandle(c[1]))),
-                               to_point(mesh.point(TriMesh::VertexHandle(c[2]))));
+  out.triangles = triangles_of(mesh);
   return out;
 }
 

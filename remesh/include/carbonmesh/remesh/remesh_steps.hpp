@@ -353,16 +353,16 @@ int post_process(TriMesh& mesh, int kn, double emin, double emax);
 // ---- surface_fit.cpp: least-squares fit of the remeshed surface to the input (after Algorithm 1) ---------
 
 struct SurfaceFitSettings {
-  int rounds = 2;              // linearise-and-solve rounds
-  double max_offset = 0.4;     // largest move of a vertex off its place, as a fraction of emin
+  int rounds = 2;               // linearise-and-solve rounds
+  double max_offset = 0.4;      // largest move of a vertex off its place, as a fraction of emin
   double edge_stiffness = 0.3;  // weight of an edge's length change, against a sample's squared distance
-  int settle_sweeps = 20;      // sweeps moving edges the solve took out of [emin, emax] back in, each round
+  int settle_sweeps = 20;       // sweeps moving edges the solve took out of [emin, emax] back in, each round
 };
 
 struct SurfaceFitResult {
   double rms_before = 0, rms_after = 0;  // area-weighted RMS distance of the faces' quadrature points to the input
   double input_rms_before = 0, input_rms_after = 0;  // the same for the input's faces' points to the mesh
-  std::size_t limited = 0;           // displacement halvings that kept an edge inside [emin, emax]
+  std::size_t limited = 0;            // displacement halvings that kept an edge inside [emin, emax]
   std::size_t solver_iterations = 0;  // conjugate-gradient iterations, all rounds
   std::size_t settle_sweeps = 0;      // sweeps moving edges back into the interval, all rounds
 };
