@@ -236,8 +236,13 @@ class BlockSystem {
       column_.insert(column_.end(), row.begin(), row.end());
       start_[static_cast<std::size_t>(v.idx()) + 1] = column_.size();
     }
+    clear();
+  }
+
+  // Every block and right side zero again (the pattern stays: the fit changes no connectivity).
+  void clear() {
     blocks_.assign(column_.size(), Block{});
-    rhs_ = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh.n_vertices()));
+    rhs_ = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(start_.size() - 1));
   }
 
   Block& block(int i, int j) {
@@ -410,6 +415,18 @@ void add_edge_terms(BlockSystem& system, const TriMesh& mesh, const std::vector<
   }
 }
 
+// True if the fit took the edge of halfedge h out of [emin, emax]: outside now, inside at `start` (an edge that was
+// outside already is not the fit's doing).
+bool left_interval(const TriMesh& mesh, TriMesh::HalfedgeHandle h, const std::vector<Vec3>& start, double emin,
+                   double emax) {
+  const auto v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
+  const double now = (mesh.point(v1) - mesh.point(v0)).norm();
+  if (now >= emin && now <= emax) return false;
+  const double before =
+      (start[static_cast<std::size_t>(v0.idx())] - start[static_cast<std::size_t>(v1.idx())]).norm();
+  return before >= emin && before <= emax;
+}
+
 // Moves the ends of every edge that was inside [emin, emax] at `start` and is not now back inside it, along the
 // edge, in edge order (Gauss-Seidel); a fixed end stays. Returns the sweeps made.
 int settle_edges(TriMesh& mesh, const std::vector<Vec3>& start, double emin, double emax,
@@ -421,13 +438,12 @@ int settle_edges(TriMesh& mesh, const std::vector<Vec3>& start, double emin, dou
     for (auto e : mesh.edges()) {
       if (mesh.status(e).deleted()) continue;
       const auto h = mesh.halfedge_handle(e, 0);
+      if (!left_interval(mesh, h, start, emin, emax)) continue;
       const auto v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
       Vec3 u = mesh.point(v1) - mesh.point(v0);
       const double length = u.norm();
-      if (length >= emin && length <= emax) continue;
+      if (length <= 0) continue;
       const std::size_t i0 = static_cast<std::size_t>(v0.idx()), i1 = static_cast<std::size_t>(v1.idx());
-      const double before = (start[i0] - start[i1]).norm();
-      if (before < emin || before > emax || length <= 0) continue;  // was outside already: not the fit's doing
       const bool m0 = moves[i0] != 0, m1 = moves[i1] != 0;
       if (!m0 && !m1) continue;
       u /= length;
@@ -461,13 +477,9 @@ std::size_t keep_interval(TriMesh& mesh, const std::vector<Vec3>& start, const s
     for (auto e : mesh.edges()) {
       if (mesh.status(e).deleted()) continue;
       const auto h = mesh.halfedge_handle(e, 0);
-      const std::size_t i0 = static_cast<std::size_t>(mesh.from_vertex_handle(h).idx());
-      const std::size_t i1 = static_cast<std::size_t>(mesh.to_vertex_handle(h).idx());
-      const double now = (mesh.point(mesh.from_vertex_handle(h)) - mesh.point(mesh.to_vertex_handle(h))).norm();
-      if (now >= emin && now <= emax) continue;
-      const double before = (start[i0] - start[i1]).norm();
-      if (before < emin || before > emax) continue;  // was outside already: not the fit's doing
-      shrink[i0] = shrink[i1] = 1;
+      if (!left_interval(mesh, h, start, emin, emax)) continue;
+      shrink[static_cast<std::size_t>(mesh.from_vertex_handle(h).idx())] = 1;
+      shrink[static_cast<std::size_t>(mesh.to_vertex_handle(h).idx())] = 1;
       any = true;
     }
     if (!any) return limited;
@@ -503,12 +515,13 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
 
   Hints hints;
   std::vector<Sample> backward;
+  BlockSystem system(mesh);
   for (int round = 0; round < settings.rounds; ++round) {
     const Faces faces = faces_of(mesh);
     backward = input_samples(faces, points, backward);
     // Normal equations of min sum_s w_s (r_s + g_s . d)^2 + sum_edges mu w (|e| - |e_start| + u_e . d)^2
     // + lambda w |d|^2, w the mean weight of the mesh's samples.
-    BlockSystem system(mesh);
+    system.clear();
     const Sums forward = add_samples(system, faces, input.tree(), hints, backward, moves);
     if (round == 0) {
       result.rms_before = forward.rms();
