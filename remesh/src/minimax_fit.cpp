@@ -4,7 +4,8 @@
 // The least-squares fit (surface_fit.cpp) lowers the mean of the squared distance; the largest distance is set at a
 // few spots: faces bridging a groove of the input or cutting across a ridge, where the fit trades one side against
 // the other in the mean. A scan samples both surfaces (remeshed faces at their centroid and edge midpoints, input
-// corners and face centroids); spots farther than `tolerance` and than `share` of the largest distance are taken
+// corners, edge midpoints and face centroids: on a coarse input a crease along an input edge is farthest in its
+// middle, which neither its corners nor the faces' centroids see); spots farther than `tolerance` and than `share` of the largest distance are taken
 // farthest first (those farther than an edge are left: a part of the input was cut off there, which small moves do
 // not mend). Around each spot, the corners of its face and the far corners of its three neighbours move one at a
 // time, along their normal and two tangents, in a pattern search (the step halved when no move gains) over the
@@ -148,8 +149,8 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
       worst = std::max(worst, input_tree.squared_distance(to_point(p), hits[k].first));
     forward[k] = std::sqrt(worst);
   }
-  // Input corners and face centroids, to the remeshed surface (and the remeshed face nearest each; the tree's
-  // triangles in the order of `faces`).
+  // Input corners, face centroids and edge midpoints, to the remeshed surface (and the remeshed face nearest each;
+  // the tree's triangles in the order of `faces`).
   Triangles triangles;
   triangles.reserve(faces.size());
   for (auto f : faces) {
@@ -161,24 +162,30 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
   tree.build();
   tree.accelerate_distance_queries();
   const int nv = static_cast<int>(input.n_vertices()), ni = static_cast<int>(input.n_faces());
-  std::vector<double> backward(static_cast<std::size_t>(nv + ni), 0);
+  const int ne = static_cast<int>(input.n_edges()), n = nv + ni + ne;
+  std::vector<double> backward(static_cast<std::size_t>(n), 0);
   if (!moved) {
-    memory.nearest_point.assign(static_cast<std::size_t>(nv + ni), Vec3(0, 0, 0));
-    memory.nearest_position.assign(static_cast<std::size_t>(nv + ni), -1);
+    memory.nearest_point.assign(static_cast<std::size_t>(n), Vec3(0, 0, 0));
+    memory.nearest_position.assign(static_cast<std::size_t>(n), -1);
   }
 #pragma omp parallel for schedule(dynamic, 256)
-  for (int k = 0; k < nv + ni; ++k) {
+  for (int k = 0; k < n; ++k) {
     Vec3 p;
     if (k < nv) {
       const TriMesh::VertexHandle v(k);
       if (input.status(v).deleted() || input.is_isolated(v)) continue;
       p = input.point(v);
-    } else {
+    } else if (k < nv + ni) {
       const TriMesh::FaceHandle f(k - nv);
       if (input.status(f).deleted()) continue;
       Vec3 a, b, c;
       geometry::face_points(input, f, a, b, c);
       p = (a + b + c) / 3.0;
+    } else {
+      const TriMesh::EdgeHandle e(k - nv - ni);
+      if (input.status(e).deleted()) continue;
+      const auto h = input.halfedge_handle(e, 0);
+      p = 0.5 * (input.point(input.from_vertex_handle(h)) + input.point(input.to_vertex_handle(h)));
     }
     const auto j = static_cast<std::size_t>(k);
     const int before = memory.nearest_position[j];
@@ -206,16 +213,24 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
     if (spot(forward[static_cast<std::size_t>(i)]))
       result.spots.emplace_back(-forward[static_cast<std::size_t>(i)], faces[static_cast<std::size_t>(i)].idx());
   result.input_faces.assign(mesh.n_faces(), {});
-  for (int k = 0; k < nv + ni; ++k) {
+  for (int k = 0; k < n; ++k) {
     const int position = memory.nearest_position[static_cast<std::size_t>(k)];
     if (position < 0) continue;
     const int owner = faces[static_cast<std::size_t>(position)].idx();
     const double d = backward[static_cast<std::size_t>(k)];
     if (spot(d)) result.spots.emplace_back(-d, owner);
     auto& list = result.input_faces[static_cast<std::size_t>(owner)];
-    if (k >= nv) list.push_back(k - nv);
-    else
+    if (k < nv) {
       for (auto f : input.vf_range(TriMesh::VertexHandle(k))) list.push_back(f.idx());
+    } else if (k < nv + ni) {
+      list.push_back(k - nv);
+    } else {
+      const TriMesh::EdgeHandle e(k - nv - ni);
+      for (int side = 0; side < 2; ++side) {
+        const auto f = input.face_handle(input.halfedge_handle(e, side));
+        if (f.is_valid()) list.push_back(f.idx());
+      }
+    }
   }
   std::sort(result.spots.begin(), result.spots.end());
   return result;
