@@ -1,25 +1,24 @@
 // Vertices moved to lower the largest distance between the remeshed surface and the input (after the surface fit;
 // not in the dissertation).
 //
-// The least-squares fit (surface_fit.cpp) lowers the mean of the squared distance; the largest distance is set at a
-// few spots: faces bridging a groove of the input or cutting across a ridge, where the fit trades one side against
-// the other in the mean. A scan samples both surfaces (remeshed faces at their centroid and edge midpoints, input
-// corners, edge midpoints and face centroids: on a coarse input a crease along an input edge is farthest in its
-// middle, which neither its corners nor the faces' centroids see); spots farther than `tolerance` and than `share` of the largest distance are taken
-// farthest first (those farther than an edge are left: a part of the input was cut off there, which small moves do
-// not mend). Around each spot, the corners of its face and the far corners of its three neighbours move one at a
-// time, along their normal and two tangents, in a pattern search (the step halved when no move gains) over the
-// region: the faces at those vertices. A move is kept if every edge at the vertex stays in [emin, emax], no face at
-// it gets an angle under 3 degrees or turns by more than ~72 degrees from its start, and the region's largest
-// distance falls, or stays and the squared excess of its samples over 0.7 of it falls (so that two balanced maxima
-// can both come down). The distances are those of 15 samples of each region face to the input faces near it and of
-// 15 samples of each input face under the region to the region's faces (the samples nearer the region than the
-// ring of faces around it; the others are the ring's, which no move changes). The result is kept only if the
-// region's largest distance fell for certain: the bound over every point of its faces (branch and bound, as
-// `carbonmesh stats --ref`) and over 153 samples of each input face under it lie below the largest distance the
-// region had (else the search may only have moved it between its samples: it runs again with 45 samples a face,
-// then gives up). Spots run on every thread, each starting once every
-// earlier spot near it has finished (OrderedSchedule): the output does not depend on the thread count.
+// The least-squares fit (surface_fit.cpp) lowers the mean of the squared distance; the largest distance is set at a few
+// spots: faces bridging a groove of the input or cutting across a ridge, where the fit trades one side against the
+// other in the mean. A scan samples both surfaces (remeshed faces at their centroid and edge midpoints, input corners,
+// edge midpoints and face centroids: on a coarse input a crease along an input edge is farthest in its middle, which
+// neither its corners nor the faces' centroids see); spots farther than `tolerance` and than `share` of the largest
+// distance are taken farthest first (those farther than an edge are left: a part of the input was cut off there, which
+// small moves do not mend). Around each spot, the corners of its face and the far corners of its three neighbours move
+// one at a time, along their normal and two tangents, in a pattern search (the step halved when no move gains) over the
+// region: the faces at those vertices. A move is kept if every edge at the vertex stays in [emin, emax], no face at it
+// gets an angle under 3 degrees or turns by more than ~72 degrees from its start, and the region's largest distance
+// falls, or stays and the squared excess of its samples over 0.7 of it falls (so that two balanced maxima can both come
+// down). The distances are those of 15 samples of each region face to the input faces near it and of 15 samples of each
+// input face under the region to the region's faces (the samples nearer the region than the ring of faces around it;
+// the others are the ring's, which no move changes). The result is kept only if the region's largest distance fell for
+// certain: the bound over every point of its faces (branch and bound, as `carbonmesh stats --ref`) and over 153 samples
+// of each input face under it lie below the largest distance the region had (else the search may only have moved it
+// between its samples: it runs again with 45 samples a face, then gives up). Spots run on every thread, each starting
+// once every earlier spot near it has finished (OrderedSchedule): the output does not depend on the thread count.
 #include <algorithm>
 #include <array>
 #include <chrono>
