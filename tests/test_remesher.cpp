@@ -856,6 +856,36 @@ TEST(MinimaxFit, LowersTheLargestDistanceAndKeepsEveryEdgeInside) {
   EXPECT_LT(after.rms, 1.1 * before.rms);
 }
 
+// The minimax scan samples the input's edge midpoints: a roof of two input faces meeting in a ridge, and a mesh with
+// every vertex on the input whose left faces cut under the ridge. The distance is largest at the ridge's middle
+// (0.3725), which neither the input's corners (on the mesh), its face centroids nor the mesh's samples reach
+// (without the midpoints the scan's largest was 0.2509): the scan's largest distance is the Hausdorff maximum only
+// if it samples that point.
+TEST(MinimaxFit, ScanSeesACreaseAlongAnInputEdge) {
+  TriMesh roof, mesh;
+  const Vec3 p0(0, -2, 0), p1(0, 2, 0), p2(-2, 0, -1), p3(2, 0, -1), q(0.5, 0, -0.25);  // q on face p1 p0 p3
+  {
+    const auto a = roof.add_vertex(p0), b = roof.add_vertex(p1), c = roof.add_vertex(p2), d = roof.add_vertex(p3);
+    roof.add_face(a, b, c);
+    roof.add_face(b, a, d);
+  }
+  {
+    const auto a = mesh.add_vertex(p0), b = mesh.add_vertex(p1), c = mesh.add_vertex(p2), d = mesh.add_vertex(p3);
+    const auto m = mesh.add_vertex(q);
+    mesh.add_face(c, a, m);
+    mesh.add_face(c, m, b);
+    mesh.add_face(m, a, d);
+    mesh.add_face(m, d, b);
+  }
+  MinimaxFitSettings scan_only;
+  scan_only.rounds = 0;
+  const double sampled = minimax_fit(mesh, roof, 1.5, 3.5, scan_only).max_before;
+  const HausdorffResult exact = distance_to(mesh, roof);
+  EXPECT_GT(exact.max, 0.35);
+  EXPECT_GT(sampled, 0.99 * exact.max);
+  EXPECT_LE(sampled, exact.max + 1e-9);
+}
+
 // The feature snap on a cube: vertices are put on corner and edge points that the remeshed triangles cut off.
 // The RMS distance to the input falls clearly (measured 0.1615 -> 0.1234), the farthest input vertex does not
 // get farther, and every edge stays inside. The largest sampled distance does not fall (0.964 -> 1.017): the
