@@ -17,9 +17,11 @@
 #include "carbonmesh/simulations/mirror_plane.hpp"
 #include "carbonmesh/simulations/ring_structure.hpp"
 #include "carbonmesh/simulations/sp_rings.hpp"
+#include "test_meshes.hpp"
 
 using namespace carbonmesh;
 namespace fs = std::filesystem;
+using carbonmesh::test::mesh_from;
 
 namespace {
 
@@ -51,17 +53,6 @@ std::map<int, std::size_t> size_counts(const std::vector<std::vector<int>>& ring
   std::map<int, std::size_t> m;
   for (const auto& r : rings) ++m[static_cast<int>(r.size())];
   return m;
-}
-
-TriMesh mesh_from(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles) {
-  TriMesh mesh;
-  std::vector<TriMesh::VertexHandle> v;
-  for (const auto& p : points) v.push_back(mesh.add_vertex(p));
-  for (const auto& t : triangles) {
-    const auto f = mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
-    EXPECT_TRUE(f.is_valid());
-  }
-  return mesh;
 }
 
 // A planar triangulated patch whose rows above y = 0 hold one more lattice column than the rows below: an edge

@@ -1,5 +1,8 @@
 #pragma once
 // Helpers shared by the remesher tests.
+#include <gtest/gtest.h>
+
+#include <array>
 #include <random>
 #include <vector>
 
@@ -7,6 +10,18 @@
 #include "carbonmesh/remesh/mesh.hpp"
 
 namespace carbonmesh::test {
+
+// A mesh of the given points and triangles (vertex indices, counter-clockwise seen from outside).
+inline TriMesh mesh_from(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles) {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> v;
+  for (const auto& p : points) v.push_back(mesh.add_vertex(p));
+  for (const auto& t : triangles) {
+    const auto f = mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
+    EXPECT_TRUE(f.is_valid());
+  }
+  return mesh;
+}
 
 // Scales a mesh about the origin so that its mean edge length is `mean`.
 inline TriMesh scaled(TriMesh mesh, double mean) {

@@ -862,21 +862,10 @@ TEST(MinimaxFit, LowersTheLargestDistanceAndKeepsEveryEdgeInside) {
 // (without the midpoints the scan's largest was 0.2509): the scan's largest distance is the Hausdorff maximum only
 // if it samples that point.
 TEST(MinimaxFit, ScanSeesACreaseAlongAnInputEdge) {
-  TriMesh roof, mesh;
-  const Vec3 p0(0, -2, 0), p1(0, 2, 0), p2(-2, 0, -1), p3(2, 0, -1), q(0.5, 0, -0.25);  // q on face p1 p0 p3
-  {
-    const auto a = roof.add_vertex(p0), b = roof.add_vertex(p1), c = roof.add_vertex(p2), d = roof.add_vertex(p3);
-    roof.add_face(a, b, c);
-    roof.add_face(b, a, d);
-  }
-  {
-    const auto a = mesh.add_vertex(p0), b = mesh.add_vertex(p1), c = mesh.add_vertex(p2), d = mesh.add_vertex(p3);
-    const auto m = mesh.add_vertex(q);
-    mesh.add_face(c, a, m);
-    mesh.add_face(c, m, b);
-    mesh.add_face(m, a, d);
-    mesh.add_face(m, d, b);
-  }
+  // The ridge p0 p1, the roof's feet p2 and p3, and q on the face p1 p0 p3.
+  const std::vector<Vec3> points = {{0, -2, 0}, {0, 2, 0}, {-2, 0, -1}, {2, 0, -1}, {0.5, 0, -0.25}};
+  const TriMesh roof = test::mesh_from({points.begin(), points.begin() + 4}, {{0, 1, 2}, {1, 0, 3}});
+  TriMesh mesh = test::mesh_from(points, {{2, 0, 4}, {2, 4, 1}, {4, 0, 3}, {4, 3, 1}});
   MinimaxFitSettings scan_only;
   scan_only.rounds = 0;
   const double sampled = minimax_fit(mesh, roof, 1.5, 3.5, scan_only).max_before;
