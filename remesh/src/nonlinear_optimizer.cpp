@@ -25,11 +25,6 @@ using geometry::kMinAngle;
 constexpr double kHingeWeight = 1000.0;  // weight of the interval hinge relative to Eq 4.7
 constexpr double kHingeMargin = 0.05;    // the hinge starts this share of the interval width inside it
 constexpr int kDenseUnknowns = 48;       // regions with at most this many unknowns are solved with a dense LLT
-// Levenberg-Marquardt stops when a step lowers the energy by less than this share of it (or after 20 steps):
-constexpr double kConverged = 1e-10;  // the loop's optimizer and the flips' edge regions (optimize_edge_region)
-constexpr double kSettled = 1e-3;     // the relaxations whose result the caller judges (optimize_vertices: the snap,
-                                      // tip caps, relaxed flips, stuck edges): 1e-10 ran all 20 steps in 316 of the
-                                      // snap's 423 relaxations on bunny, most of the last ones gaining under 0.01%
 
 bool troubling(const TriMesh& mesh, TriMesh::EdgeHandle e, double emin, double emax) {
   const double l = geometry::edge_length(mesh, e);
@@ -103,10 +98,9 @@ int priority(const TriMesh& mesh, const EdgeStar& star, int kn, const std::vecto
 }
 
 // Minimises Error_b (Eq 4.7) over the tangent displacements (alpha_i, beta_i) of `variables` with
-// Levenberg-Marquardt (until a step gains less than `min_gain` of the energy); the other vertices stay fixed. Applies
-// the result if no face folds.
+// Levenberg-Marquardt; the other vertices stay fixed. Applies the result if no face folds.
 void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emin, double emax, double outside_weight,
-                     double min_gain, Marks& marks) {
+                     Marks& marks) {
   const double m = 0.5 * (emin + emax);
   const int nv = static_cast<int>(variables.size());
   ++marks.stamp;
@@ -296,7 +290,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
         current = e;
         mu = std::max(mu / 3, 1e-9);
         improved = true;
-        if (gain < min_gain * (1 + current)) it = 1000;
+        if (gain < 1e-10 * (1 + current)) it = 1000;
       } else {
         mu *= 4;
       }
@@ -358,7 +352,7 @@ std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, do
       variables.push_back(star.vertices[i]);
       moved.emplace_back(star.vertices[i], mesh.point(star.vertices[i]));
     }
-  if (!variables.empty()) optimize_region(mesh, variables, emin, emax, 1.0, kConverged, *marks);
+  if (!variables.empty()) optimize_region(mesh, variables, emin, emax, 1.0, *marks);
   return variables.size();
 }
 
@@ -371,7 +365,7 @@ void optimize_vertices(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& 
   thread_local std::unique_ptr<Marks> marks;
   if (!marks || marks->vertex.size() != mesh.n_vertices() || marks->edge.size() != mesh.n_edges())
     marks = std::make_unique<Marks>(mesh);
-  if (!variables.empty()) optimize_region(mesh, variables, emin, emax, 1.0, kSettled, *marks);
+  if (!variables.empty()) optimize_region(mesh, variables, emin, emax, 1.0, *marks);
 }
 
 NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double emax) {
@@ -415,7 +409,7 @@ NonlinearResult nonlinear_optimizer(TriMesh& mesh, int kn, double emin, double e
         if (!mesh.is_boundary(star.vertices[i]) || border_curve(mesh, star.vertices[i], curve))
           variables.push_back(star.vertices[i]);
       if (variables.empty()) break;
-      optimize_region(mesh, variables, emin, emax, attempt == 0 ? 1.0 : 10.0, kConverged, marks);
+      optimize_region(mesh, variables, emin, emax, attempt == 0 ? 1.0 : 10.0, marks);
       ++result.regions;
     }
   }

@@ -127,8 +127,7 @@ std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, do
                                  std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved);
 
 // The same over the given vertices: interior ones, and border ones for which slides_on_border(), each moving along
-// the curve through its border edges; every other vertex stays where it is. A relaxation whose result the caller
-// tests: it stops once a step gains less than 0.1% of the energy.
+// the curve through its border edges; every other vertex stays where it is.
 void optimize_vertices(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& variables, double emin, double emax);
 
 // Whether border vertex `v` has a border curve to move along (it lies on exactly one border, and its two border
