@@ -83,8 +83,8 @@ class TipCapper {
   // rings; kept, with the copy in m and its fixed vertices in marks, if it passes the tests (see cap_tips()).
   Outcome attempt(const TriMesh& mesh, const std::vector<char>& fixed, TriMesh::FaceHandle nearest, const Vec3& q,
                   double distance, int rings, const std::vector<Vec3>& points, TriMesh& m, std::vector<char>& marks) {
-    // Before: the input points within the rings (watched_), their distances to the faces two rings beyond, and the
-    // bound of the faces within the rings.
+    // Before: the input points within the rings (watched_) and their distances to the faces two rings beyond (the
+    // bound of the faces within the rings is measured at the end).
     const auto corner = mesh.to_vertex_handle(mesh.halfedge_handle(nearest));
     local_.collect(mesh, corner, rings, region_);
     double radius = 0;
@@ -92,9 +92,6 @@ class TipCapper {
     watched_.clear();
     for (const Vec3& p : points)
       if ((p - q).norm() <= radius) watched_.push_back(p);
-    local_.faces(mesh, region_, faces_);
-    region_triangles(mesh);
-    const double forward_before = forward_bound();
     local_.collect(mesh, corner, rings + 2, region_);
     local_.faces(mesh, region_, faces_);
     region_triangles(mesh);
@@ -188,6 +185,11 @@ class TipCapper {
     local_.faces(m, region_, faces_);
     region_triangles(m);
     const double forward_after = forward_bound();
+    // (Measured last, when every other test has passed: most attempts are refused before.)
+    local_.collect(mesh, corner, rings, region_);
+    local_.faces(mesh, region_, faces_);
+    region_triangles(mesh);
+    const double forward_before = forward_bound();
     spdlog::debug("cap tips: {} rings, the faces' distance bound {:.4f} -> {:.4f} (the tip {:.4f})", rings,
                   forward_before, forward_after, distance);
     if (forward_after > std::max(forward_before, distance)) return Outcome::kRefused;
