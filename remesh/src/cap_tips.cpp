@@ -83,19 +83,10 @@ class TipCapper {
   // rings; kept, with the copy in m and its fixed vertices in marks, if it passes the tests (see cap_tips()).
   Outcome attempt(const TriMesh& mesh, const std::vector<char>& fixed, TriMesh::FaceHandle nearest, const Vec3& q,
                   double distance, int rings, const std::vector<Vec3>& points, TriMesh& m, std::vector<char>& marks) {
-    // Before: the input points within the rings (watched_) and their distances to the faces two rings beyond (the
-    // bound of the faces within the rings is measured at the end).
+    // The input points within the rings (watched_); their distances to the faces two rings beyond and the bound of the
+    // faces within the rings, before the attempt, are measured at the end, when the other tests have passed (on
+    // `mesh`, which the attempt leaves as it was): most attempts are refused before.
     const auto corner = mesh.to_vertex_handle(mesh.halfedge_handle(nearest));
-    local_.collect(mesh, corner, rings, region_);
-    double radius = 0;
-    for (auto v : region_) radius = std::max(radius, (mesh.point(v) - q).norm());
-    watched_.clear();
-    for (const Vec3& p : points)
-      if ((p - q).norm() <= radius) watched_.push_back(p);
-    local_.collect(mesh, corner, rings + 2, region_);
-    local_.faces(mesh, region_, faces_);
-    region_triangles(mesh);
-    distances_to_region(watched_before_);
     m = mesh;
     const auto tip = m.split(nearest, q);
     // The snapped vertices may move here (held, they left bunny's maxima higher on 3 of its 6 benchmark runs); one
@@ -169,6 +160,16 @@ class TipCapper {
       }
     // No watched input point may end farther from the surface than it was and than the tip was, and the faces within
     // the rings may end no farther from the input than they were and than the tip was.
+    local_.collect(mesh, corner, rings, region_);
+    double radius = 0;
+    for (auto v : region_) radius = std::max(radius, (mesh.point(v) - q).norm());
+    watched_.clear();
+    for (const Vec3& p : points)
+      if ((p - q).norm() <= radius) watched_.push_back(p);
+    local_.collect(mesh, corner, rings + 2, region_);
+    local_.faces(mesh, region_, faces_);
+    region_triangles(mesh);
+    distances_to_region(watched_before_);
     local_.collect(m, tip, rings + 2, region_);
     local_.faces(m, region_, faces_);
     region_triangles(m);
@@ -185,7 +186,6 @@ class TipCapper {
     local_.faces(m, region_, faces_);
     region_triangles(m);
     const double forward_after = forward_bound();
-    // (Measured last, when every other test has passed: most attempts are refused before.)
     local_.collect(mesh, corner, rings, region_);
     local_.faces(mesh, region_, faces_);
     region_triangles(mesh);
