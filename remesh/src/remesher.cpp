@@ -489,6 +489,18 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
                     flips.flips, flips.candidates, s.snap_tolerance * s.emin, flips.relaxed_flips, flips.relaxed_tries,
                     flips.max_before, flips.max_after, took.flips);
     }
+    // The faces the flips left farthest from the input get a vertex of their own (its time counted in the flips').
+    if (s.snap_features && s.cap_faces) {
+      const CapTipsResult caps = cap_far_faces(mesh, surface, *projection_target, s.kn, s.emin, s.emax,
+                                               s.snap_tolerance * s.emin, snap.fixed, tree);
+      result.capped_faces = caps.capped;
+      result.face_cap_vertices = caps.added;
+      double caps_seconds = 0;
+      step_end(caps_seconds);
+      took.flips += caps_seconds;
+      spdlog::debug("face caps: {} of {} faces capped ({} tried), {} vertices added, {:.3f}s", caps.capped,
+                    caps.candidates, caps.tries, caps.added, caps_seconds);
+    }
     // The vertices the snap put on features stay there in the fit and the minimax fit.
     const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
     if (s.fit_surface) {
@@ -624,6 +636,8 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"inserted_vertices", r.inserted_vertices},
           {"capped_tips", r.capped_tips},
           {"cap_vertices", r.cap_vertices},
+          {"capped_faces", r.capped_faces},
+          {"face_cap_vertices", r.face_cap_vertices},
           {"snap_max_before", r.snap_max_before},
           {"snap_max_after", r.snap_max_after},
           {"snapped_border_vertices", r.snapped_border_vertices},

@@ -152,6 +152,10 @@ void add_remesh_command(CLI::App& app, Action& action) {
           std::cout << fmt::format("tip caps: {} input vertices given a vertex with the cap around rebuilt ({:+} "
                                    "vertices)\n",
                                    result.capped_tips, result.cap_vertices);
+        if (result.capped_faces > 0)
+          std::cout << fmt::format("face caps: {} faces farthest from the input given a vertex with the cap around "
+                                   "rebuilt ({:+} vertices)\n",
+                                   result.capped_faces, result.face_cap_vertices);
         if (result.snapped && result.snap_border_max_before > 0)
           std::cout << fmt::format("feature snap, borders: {} border vertices moved onto the input's border, farthest "
                                    "border vertex {:.4f} -> {:.4f}\n",

@@ -278,6 +278,15 @@ CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarg
                        double emax, double tolerance, std::vector<char>& fixed,
                        const triangle_tree::SurfaceTree* input_tree = nullptr);
 
+// The same for the faces of `mesh` farthest from `input` (at most 8 attempts, farther than `tolerance` and than 0.8 of
+// the farthest, seven samples a face; none if the farthest is more than emax away): a vertex at the input point nearest
+// the face's farthest point, the cap around it rebuilt, kept under the same tests except that the faces within the
+// rings must end at least 5% nearer the input than the farthest of them was. One attempt a spot (a face whose point is
+// within emax of a refused attempt's is not tried). `candidates` counts the faces taken, `tries` the attempts.
+CapTipsResult cap_far_faces(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
+                            double emax, double tolerance, std::vector<char>& fixed,
+                            const triangle_tree::SurfaceTree* input_tree = nullptr);
+
 // ---- data_dependent_flips.cpp ------------------------------------------------------------------------------
 
 struct DataDependentFlips {

@@ -59,6 +59,10 @@ struct RemeshSettings {
   // it rebuilt (cap_tips in remesh_steps.hpp: tips that no move or single split reached), every edge kept inside.
   // Only with snap_features.
   bool cap_tips = true;
+  // After the data-dependent flips, the faces farthest from the input get a vertex at the input point nearest their
+  // farthest point, with the cap around it rebuilt (cap_far_faces in remesh_steps.hpp: a face across a saddle or a
+  // crease that no vertex move or flip brings nearer), every edge kept inside. Only with snap_features.
+  bool cap_faces = true;
   // After the snap, flip the diagonals of quads whose faces lie farther than snap_tolerance * emin from the input
   // where the other diagonal follows it (data_dependent_flips in remesh_steps.hpp: grooves, ridges), every edge
   // kept inside and no vertex more than one off its ideal valence; then those whose other diagonal is outside the
@@ -93,7 +97,7 @@ struct RemeshStepSeconds {
   double cleanup = 0;      // post-processing (4.6), valence defects and stuck edges after the loop
   double regularize = 0;   // valence flips that keep every edge inside
   double snap = 0;         // snap_to_features and cap_tips
-  double flips = 0;        // data_dependent_flips, the relaxed ones included
+  double flips = 0;        // data_dependent_flips, the relaxed ones included, and cap_far_faces
   double surface_fit = 0;  // fit_to_surface
   double minimax_fit = 0;  // minimax_fit
   double other = 0;        // the rest: the topology guard, the final figures, the farthest input vertex, and a first
@@ -140,6 +144,8 @@ struct RemeshResult {
   std::size_t inserted_vertices = 0;  // vertices it added at input vertices no move reached (a split face each)
   std::size_t capped_tips = 0;  // input vertices given a vertex of their own by cap_tips (settings.cap_tips)
   long cap_vertices = 0;        // vertices it added in all (the tips, less the collapses, plus the splits around)
+  std::size_t capped_faces = 0;  // faces given a vertex of their own by cap_far_faces (settings.cap_faces)
+  long face_cap_vertices = 0;    // vertices it added in all
   // The farthest interior input vertex from the remeshed surface, before and after the snap (before the fit and the
   // tip caps).
   double snap_max_before = 0, snap_max_after = 0;
