@@ -442,6 +442,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     const triangle_tree::SurfaceTree* tree = surface_tree ? &*surface_tree : nullptr;
     // Vertices onto the input points the surface cuts off, before the fit, which then keeps them there.
     SnapResult snap;
+    double farthest_input = 0;  // the farthest interior input vertex, as the tip caps measured it
     if (s.snap_features) {
       snap = snap_to_features(mesh, surface, *projection_target, s.kn, s.emin, s.emax, s.snap_tolerance * s.emin,
                               tree);
@@ -458,6 +459,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
         const CapTipsResult caps = cap_tips(mesh, surface, *projection_target, s.kn, s.emin, s.emax,
                                             s.snap_tolerance * s.emin, snap.fixed, tree);
         result.capped_tips = caps.capped;
+        farthest_input = caps.farthest;
         result.cap_vertices = caps.added;
         spdlog::debug("cap tips: {} of {} input vertices capped ({} tried), {} vertices added, {:.3f}s", caps.capped,
                       caps.candidates, caps.tries, caps.added, seconds() - caps_start);
@@ -492,7 +494,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // The faces the flips left farthest from the input get a vertex of their own (its time counted in the flips').
     if (s.snap_features && s.cap_faces) {
       const CapTipsResult caps = cap_far_faces(mesh, surface, *projection_target, s.kn, s.emin, s.emax,
-                                               s.snap_tolerance * s.emin, snap.fixed, tree);
+                                               s.snap_tolerance * s.emin, snap.fixed, farthest_input, tree);
       result.capped_faces = caps.capped;
       result.face_cap_vertices = caps.added;
       double caps_seconds = 0;

@@ -264,6 +264,7 @@ struct CapTipsResult {
   std::size_t tries = 0;       // of them, those still farther than the tolerance when their turn came
   std::size_t capped = 0;      // given a vertex of their own, kept
   long added = 0;  // vertices added, net (the tips and the splits of long edges, less the collapses of short ones)
+  double farthest = 0;  // the largest distance at the start (of an interior input vertex; with the faces: of either)
 };
 // The interior input vertices farthest from `mesh` (at most 8, farther than `tolerance` and than 0.8 of the farthest;
 // none if the farthest is more than emax away: a part of the input cut off) each get a vertex of their own: the face
@@ -279,12 +280,13 @@ CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarg
                        const triangle_tree::SurfaceTree* input_tree = nullptr);
 
 // The same for the faces of `mesh` farthest from `input` (at most 8 attempts, farther than `tolerance` and than 0.8 of
-// the farthest, seven samples a face; none if the farthest is more than emax away): a vertex at the input point nearest
+// the farthest face or of `farthest_input`, the farthest input vertex's distance if larger, seven samples a face; none
+// if that is more than emax, and kn + 5 rings only): a vertex at the input point nearest
 // the face's farthest point, the cap around it rebuilt, kept under the same tests except that the faces within the
 // rings must end at least 5% nearer the input than the farthest of them was. One attempt a spot (a face whose point is
 // within emax of a refused attempt's is not tried). `candidates` counts the faces taken, `tries` the attempts.
 CapTipsResult cap_far_faces(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
-                            double emax, double tolerance, std::vector<char>& fixed,
+                            double emax, double tolerance, std::vector<char>& fixed, double farthest_input = 0,
                             const triangle_tree::SurfaceTree* input_tree = nullptr);
 
 // ---- data_dependent_flips.cpp ------------------------------------------------------------------------------
