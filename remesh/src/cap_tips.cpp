@@ -376,8 +376,8 @@ CapTipsResult cap_far_faces(TriMesh& mesh, const TriMesh& input, const Projectio
   };
   measure();
   // The faces that set the largest distance, within kShare of it, the input vertices' included: none where that is
-  // more than emax (a part of the input cut off, as in cap_tips(): camelhead's mouth, where 8 attempts at faces 0.55-0.66
-  // from the input took 1.5 s and none was kept).
+  // more than emax (a part of the input cut off, as in cap_tips(): camelhead's mouth, where 8 attempts at faces
+  // 0.55-0.66 from the input took 1.5 s and none was kept).
   const double farthest =
       std::max(farthest_input, distance.empty() ? 0.0 : *std::max_element(distance.begin(), distance.end()));
   result.farthest = farthest;
@@ -399,7 +399,7 @@ CapTipsResult cap_far_faces(TriMesh& mesh, const TriMesh& input, const Projectio
     const Farthest far = farthest_point(one, tree, kTolerance, kPiecesPerFace);
     const Vec3 q = to_vec(tree.closest_point(far.at));
     // A face next to one whose attempt was refused has its farthest point at the same spot: the attempt would rebuild
-    // the same rings (on bunny, 8 attempts at 3 spots).
+    // the same rings (bunny's attempts 8 -> 6).
     if (std::any_of(refused.begin(), refused.end(), [&](const Vec3& r) { return (r - q).norm() < emax; })) continue;
     ++result.tries;
     // With the tips' first ring count only (the second, where edges were left outside, kept no face cap on the seven

@@ -281,10 +281,10 @@ CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarg
 
 // The same for the faces of `mesh` farthest from `input` (at most 8 attempts, farther than `tolerance` and than 0.8 of
 // the farthest face or of `farthest_input`, the farthest input vertex's distance if larger, seven samples a face; none
-// if that is more than emax, and kn + 5 rings only): a vertex at the input point nearest
-// the face's farthest point, the cap around it rebuilt, kept under the same tests except that the faces within the
-// rings must end at least 5% nearer the input than the farthest of them was. One attempt a spot (a face whose point is
-// within emax of a refused attempt's is not tried). `candidates` counts the faces taken, `tries` the attempts.
+// if that is more than emax; kn + 5 rings only): a vertex at the input point nearest the face's farthest point, the cap
+// around it rebuilt, kept under the same tests except that the faces within the rings must end at least 5% nearer the
+// input than the farthest of them was. One attempt a spot (a face whose point is within emax of a refused attempt's is
+// not tried). `candidates` counts the faces taken, `tries` the attempts.
 CapTipsResult cap_far_faces(TriMesh& mesh, const TriMesh& input, const ProjectionTarget& target, int kn, double emin,
                             double emax, double tolerance, std::vector<char>& fixed, double farthest_input = 0,
                             const triangle_tree::SurfaceTree* input_tree = nullptr);
