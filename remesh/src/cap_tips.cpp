@@ -32,6 +32,7 @@
 #include "carbonmesh/remesh/triangle_tree.hpp"
 #include "farthest_point.hpp"
 #include "flip_quad.hpp"
+#include "flips_toward_input.hpp"
 #include "local_region.hpp"
 #include "remesh_geometry.hpp"
 #include "turned_against_input.hpp"
@@ -360,21 +361,8 @@ CapTipsResult cap_far_faces(TriMesh& mesh, const TriMesh& input, const Projectio
   if (input.n_faces() == 0 || mesh.n_faces() == 0) return result;
   std::optional<SurfaceTree> own;
   const Tree& tree = (input_tree ? *input_tree : own.emplace(input)).tree();
-  // The faces' sampled distances to the input (the centroid's where it is within half the tolerance: the corners are
-  // on the input too), measured again after each kept cap.
-  std::vector<double> distance;
-  auto measure = [&] {
-    const int nf = static_cast<int>(mesh.n_faces());
-    distance.assign(mesh.n_faces(), 0.0);
-#pragma omp parallel for schedule(dynamic, 256)
-    for (int i = 0; i < nf; ++i) {
-      Vec3 a, b, c;
-      geometry::face_points(mesh, TriMesh::FaceHandle(i), a, b, c);
-      const double centroid = std::sqrt(tree.squared_distance(to_point((a + b + c) / 3.0)));
-      distance[static_cast<std::size_t>(i)] = centroid < 0.5 * tolerance ? centroid : face_distance(tree, a, b, c);
-    }
-  };
-  measure();
+  // The faces' sampled distances to the input, measured again after each kept cap.
+  std::vector<double> distance = face_distances(mesh, tree, tolerance);
   // The faces that set the largest distance, within kShare of it, the input vertices' included: none where that is
   // more than emax (a part of the input cut off, as in cap_tips(): camelhead's mouth, where 8 attempts at faces
   // 0.55-0.66 from the input took 1.5 s and none was kept).
@@ -415,7 +403,7 @@ CapTipsResult cap_far_faces(TriMesh& mesh, const TriMesh& input, const Projectio
     result.added += static_cast<long>(capped.n_vertices()) - static_cast<long>(mesh.n_vertices());
     std::swap(mesh, capped);
     std::swap(fixed, marks);
-    measure();
+    distance = face_distances(mesh, tree, tolerance);
   }
   return result;
 }

@@ -53,6 +53,22 @@ bool flip_valence_ok(const TriMesh& mesh, const FlipQuad& q) {
   return after <= before + 2;
 }
 
+std::vector<double> face_distances(const TriMesh& mesh, const Tree& tree, double tolerance) {
+  std::vector<double> distance(mesh.n_faces(), 0.0);
+  const int nf = static_cast<int>(mesh.n_faces());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int i = 0; i < nf; ++i) {
+    const TriMesh::FaceHandle f(i);
+    if (mesh.status(f).deleted()) continue;
+    Vec3 a, b, c;
+    geometry::face_points(mesh, f, a, b, c);
+    // The centroid first: a face whose centroid lies within half the tolerance is no candidate.
+    const double centroid = std::sqrt(tree.squared_distance(to_point((a + b + c) / 3.0)));
+    distance[static_cast<std::size_t>(i)] = centroid < 0.5 * tolerance ? centroid : face_distance(tree, a, b, c);
+  }
+  return distance;
+}
+
 std::vector<std::pair<double, int>> far_edges(const TriMesh& mesh, const std::vector<double>& distance,
                                              double tolerance) {
   auto at = [&](TriMesh::HalfedgeHandle h) { return distance[static_cast<std::size_t>(mesh.face_handle(h).idx())]; };
@@ -74,19 +90,7 @@ DataDependentFlips data_dependent_flips(TriMesh& mesh, const TriMesh& input, dou
   std::optional<SurfaceTree> own;
   const SurfaceTree& input_surface = input_tree ? *input_tree : own.emplace(input);
   const Tree& tree = input_surface.tree();
-  std::vector<double> distance(mesh.n_faces(), 0.0);
-  const int nf = static_cast<int>(mesh.n_faces());
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int i = 0; i < nf; ++i) {
-    const TriMesh::FaceHandle f(i);
-    if (mesh.status(f).deleted()) continue;
-    Vec3 a, b, c;
-    geometry::face_points(mesh, f, a, b, c);
-    // The centroid first: a face whose centroid lies within half the tolerance is no candidate (its corners are on
-    // the input too), and most faces are such.
-    const double centroid = std::sqrt(tree.squared_distance(to_point((a + b + c) / 3.0)));
-    distance[static_cast<std::size_t>(i)] = centroid < 0.5 * tolerance ? centroid : face_distance(tree, a, b, c);
-  }
+  std::vector<double> distance = face_distances(mesh, tree, tolerance);
   auto at = [&](TriMesh::FaceHandle f) -> double& { return distance[static_cast<std::size_t>(f.idx())]; };
   for (const double d : distance) result.max_before = std::max(result.max_before, d);
   // Edges of the faces farther than the tolerance, farthest first (ties by edge index).

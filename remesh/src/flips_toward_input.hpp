@@ -1,5 +1,5 @@
 #pragma once
-// What data_dependent_flips() and its relaxed flips (relaxed_flips.cpp) share. Internal.
+// What data_dependent_flips(), its relaxed flips (relaxed_flips.cpp) and the face caps (cap_tips.cpp) share. Internal.
 #include <utility>
 #include <vector>
 
@@ -13,6 +13,10 @@ namespace carbonmesh {
 // Whether the valences after the flip of the quad's edge a-b keep every vertex within one of its ideal valence (or
 // no farther than it was) and E_val (Eq 4.2) within 2 of before.
 bool flip_valence_ok(const TriMesh& mesh, const FlipQuad& q);
+
+// Each face's distance to the input (`tree`), by face index: face_distance (seven samples), or its centroid's where
+// that is within half the tolerance (its corners are on the input too, and most faces are such); 0 for a deleted face.
+std::vector<double> face_distances(const TriMesh& mesh, const triangle_tree::Tree& tree, double tolerance);
 
 // The interior edges with a face farther than `tolerance` (`distance`: by face index), as (-distance, edge index),
 // farthest first (ties by index).
