@@ -24,6 +24,8 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "carbonmesh/remesh/garbage_collection.hpp"
@@ -35,6 +37,7 @@
 #include "flips_toward_input.hpp"
 #include "local_region.hpp"
 #include "remesh_geometry.hpp"
+#include "threads.hpp"
 #include "turned_against_input.hpp"
 
 namespace carbonmesh {
@@ -86,6 +89,13 @@ class TipCapper {
  public:
   TipCapper(const Tree& input_tree, const ProjectionTarget& target, double emin, double emax, const char* label)
       : input_tree_(input_tree), target_(target), emin_(emin), emax_(emax), local_(emin, emax), label_(label) {}
+
+  // The debug lines of the attempts since the last call, logged in order (attempts run side by side: see Lane).
+  void flush_notes() {
+    for (const std::string& line : notes_) spdlog::debug("{}", line);
+    notes_.clear();
+  }
+  void drop_notes() { notes_.clear(); }
 
   // A vertex at q in a copy of `mesh` (its face `nearest` split there) and the cap around it rebuilt within `rings`
   // rings; kept, with the copy in m and its fixed vertices in marks, if it passes the tests (see cap_tips(); with a
@@ -153,19 +163,19 @@ class TipCapper {
       flips_toward_ideal(m, inner_, edges_);
     }
     if (flaws > 0) {
-      spdlog::debug("{}: {} rings, {} flaws left", label_, rings, flaws);
+      note("{}: {} rings, {} flaws left", label_, rings, flaws);
       return Outcome::kFlaws;
     }
     local_.collect(m, tip, rings, region_);
     for (auto w : region_)
       if (std::abs(static_cast<int>(m.valence(w)) - ideal_valence(m, w)) > 1) {
-        spdlog::debug("{}: {} rings, a valence off the ideal by more than one", label_, rings);
+        note("{}: {} rings, a valence off the ideal by more than one", label_, rings);
         return Outcome::kRefused;
       }
     local_.faces(m, region_, faces_);
     for (auto f : faces_)
       if (turned_against_input(input_tree_, m, f)) {
-        spdlog::debug("{}: {} rings, a face turned against the input", label_, rings);
+        note("{}: {} rings, a face turned against the input", label_, rings);
         return Outcome::kRefused;
       }
     // No watched input point may end farther from the surface than it was and than the tip was, and the faces within
@@ -188,8 +198,8 @@ class TipCapper {
     for (std::size_t i = 0; i < watched_.size(); ++i)
       farther += watched_after_[i] > std::max(watched_before_[i], distance);
     if (farther > 0) {
-      spdlog::debug("{}: {} rings, {} of {} watched input points farther than they were and than the tip was",
-                    label_, rings, farther, watched_.size());
+      note("{}: {} rings, {} of {} watched input points farther than they were and than the tip was", label_, rings,
+           farther, watched_.size());
       return Outcome::kRefused;
     }
     local_.collect(m, tip, rings, region_);
@@ -200,8 +210,8 @@ class TipCapper {
     local_.faces(mesh, region_, faces_);
     region_triangles(mesh);
     const double forward_before = forward_bound();
-    spdlog::debug("{}: {} rings, the faces' distance bound {:.4f} -> {:.4f} (the tip {:.4f})", label_, rings,
-                  forward_before, forward_after, distance);
+    note("{}: {} rings, the faces' distance bound {:.4f} -> {:.4f} (the tip {:.4f})", label_, rings, forward_before,
+         forward_after, distance);
     if (forward_after > (gain > 0 ? gain * forward_before : std::max(forward_before, distance)))
       return Outcome::kRefused;
     for (auto v : m.vertices()) {
@@ -220,6 +230,11 @@ class TipCapper {
   }
 
  private:
+  template <class... Args>
+  void note(fmt::format_string<Args...> format, Args&&... args) {
+    if (spdlog::should_log(spdlog::level::debug)) notes_.push_back(fmt::format(format, std::forward<Args>(args)...));
+  }
+
   // The triangles of faces_, into triangles_.
   void region_triangles(const TriMesh& mesh) {
     triangles_.clear();
@@ -260,6 +275,7 @@ class TipCapper {
   double emin_, emax_;
   LocalRegion local_;
   const char* label_;  // of the log lines
+  std::vector<std::string> notes_;
   std::vector<TriMesh::VertexHandle> region_, inner_, variables_;
   std::vector<TriMesh::FaceHandle> faces_;
   std::vector<TriMesh::EdgeHandle> edges_;
@@ -277,6 +293,31 @@ std::vector<Vec3> watched_points(const TriMesh& input) {
     points.push_back(0.5 * (input.point(input.from_vertex_handle(h)) + input.point(input.to_vertex_handle(h))));
   }
   return points;
+}
+
+// One thread's attempt (TipCapper::attempt reads `mesh` and writes only its own copy): attempts run side by side, one
+// a thread, and their outcomes are taken in order; those after a kept one are tried again on the mesh it left. So the
+// result is that of one thread taking the attempts in order (most are refused: bunny's 14 in 0.23 s on one thread).
+struct Lane {
+  TipCapper capper;
+  TriMesh capped;
+  std::vector<char> marks;
+  bool tried = false, kept = false;
+};
+
+std::vector<Lane> lanes(const Tree& input_tree, const ProjectionTarget& target, double emin, double emax,
+                        const char* label) {
+  return std::vector<Lane>(static_cast<std::size_t>(std::max(1, max_threads())),
+                           Lane{TipCapper(input_tree, target, emin, emax, label), {}, {}});
+}
+
+// run(j) for j < count on `count` threads.
+template <class Run>
+void side_by_side(std::size_t count, Run run) {
+  if (count == 0) return;
+  const int n = static_cast<int>(count);
+#pragma omp parallel for schedule(static, 1) num_threads(n)
+  for (int j = 0; j < n; ++j) run(static_cast<std::size_t>(j));
 }
 
 }  // namespace
@@ -321,33 +362,51 @@ CapTipsResult cap_tips(TriMesh& mesh, const TriMesh& input, const ProjectionTarg
   if (far.size() > kTips) far.resize(kTips);
   result.candidates = far.size();
   const std::vector<Vec3> points = watched_points(input);
-  TipCapper capper(input_surface.tree(), target, emin, emax, "cap tips");
-  TriMesh capped;
-  std::vector<char> marks;
-  for (const auto& [distance, index] : far) {
-    const Vec3 q = input.point(TriMesh::VertexHandle(index));
-    // The face nearest q, on the mesh as earlier caps left it.
-    const auto hit = tree->closest_point_and_primitive(to_point(q));
-    const TriMesh::FaceHandle nearest(static_cast<int>(hit.second - triangles.cbegin()));
-    const double nearest_d = (to_vec(hit.first) - q).norm();
-    if (nearest_d <= tolerance) continue;
-    ++result.tries;
-    bool kept = false;
-    for (const int extra : kExtraRings) {
-      const Outcome outcome = capper.attempt(mesh, fixed, nearest, q, nearest_d, kn + extra, points, capped, marks);
-      kept = outcome == Outcome::kKept;
-      if (outcome != Outcome::kFlaws) break;  // more rings only where edges were left outside
+  std::vector<Lane> lane = lanes(input_surface.tree(), target, emin, emax, "cap tips");
+  for (std::size_t next = 0; next < far.size();) {
+    // The next candidates, one a thread, on the mesh as earlier caps left it.
+    const std::size_t count = std::min(lane.size(), far.size() - next);
+    side_by_side(count, [&](std::size_t j) {
+      Lane& l = lane[j];
+      const Vec3 q = input.point(TriMesh::VertexHandle(far[next + j].second));
+      // The face nearest q.
+      const auto hit = tree->closest_point_and_primitive(to_point(q));
+      const TriMesh::FaceHandle nearest(static_cast<int>(hit.second - triangles.cbegin()));
+      const double nearest_d = (to_vec(hit.first) - q).norm();
+      l.tried = nearest_d > tolerance;
+      l.kept = false;
+      if (!l.tried) return;
+      for (const int extra : kExtraRings) {
+        const Outcome outcome = l.capper.attempt(mesh, fixed, nearest, q, nearest_d, kn + extra, points, l.capped,
+                                                 l.marks);
+        l.kept = outcome == Outcome::kKept;
+        if (outcome != Outcome::kFlaws) break;  // more rings only where edges were left outside
+      }
+    });
+    // Their outcomes in order, up to the first kept one (the mesh changes there).
+    std::size_t taken = 0;
+    for (; taken < count; ++taken) {
+      Lane& l = lane[taken];
+      if (!l.tried) continue;
+      ++result.tries;
+      l.capper.flush_notes();
+      const auto& [distance, index] = far[next + taken];
+      spdlog::debug("cap tips: input vertex {}, {:.4f} from the surface: {}", index, distance,
+                    l.kept ? "capped" : "refused");
+      if (!l.kept) continue;
+      ++result.capped;
+      result.added += static_cast<long>(l.capped.n_vertices()) - static_cast<long>(mesh.n_vertices());
+      std::swap(mesh, l.capped);
+      std::swap(fixed, l.marks);
+      triangles = triangles_of(mesh);
+      tree = std::make_unique<Tree>(triangles.begin(), triangles.end());
+      tree->build();  // (before the threads query it)
+      tree->accelerate_distance_queries();
+      ++taken;
+      break;
     }
-    spdlog::debug("cap tips: input vertex {}, {:.4f} from the surface: {}", index, distance,
-                  kept ? "capped" : "refused");
-    if (!kept) continue;
-    ++result.capped;
-    result.added += static_cast<long>(capped.n_vertices()) - static_cast<long>(mesh.n_vertices());
-    std::swap(mesh, capped);
-    std::swap(fixed, marks);
-    triangles = triangles_of(mesh);
-    tree = std::make_unique<Tree>(triangles.begin(), triangles.end());
-    tree->accelerate_distance_queries();
+    for (std::size_t j = taken; j < count; ++j) lane[j].capper.drop_notes();  // (tried again)
+    next += taken;
   }
   return result;
 }
@@ -371,39 +430,71 @@ CapTipsResult cap_far_faces(TriMesh& mesh, const TriMesh& input, const Projectio
   result.farthest = farthest;
   if (farthest > emax) return result;
   const std::vector<Vec3> points = watched_points(input);
-  TipCapper capper(tree, target, emin, emax, "face caps");
-  TriMesh capped;
-  std::vector<char> marks;
+  std::vector<Lane> lane = lanes(tree, target, emin, emax, "face caps");
+  struct Pick {
+    TriMesh::FaceHandle face;
+    Vec3 q;
+    double distance;
+    std::size_t candidates;  // the faces taken up to this one since the pick before (skipped ones and this one)
+  };
+  std::vector<Pick> picks;
   std::vector<Vec3> refused;  // the input points of the refused attempts
-  while (result.tries < kTips) {
-    const auto best = std::max_element(distance.begin(), distance.end());
-    if (*best <= tolerance || *best < kShare * farthest) break;
-    ++result.candidates;
-    const TriMesh::FaceHandle face(static_cast<int>(best - distance.begin()));
-    *best = -1;  // (taken)
-    Vec3 a, b, c;
-    geometry::face_points(mesh, face, a, b, c);
-    const Triangles one = {Triangle(to_point(a), to_point(b), to_point(c))};
-    const Farthest far = farthest_point(one, tree, kTolerance, kPiecesPerFace);
-    const Vec3 q = to_vec(tree.closest_point(far.at));
-    // A face next to one whose attempt was refused has its farthest point at the same spot: the attempt would rebuild
-    // the same rings (bunny's attempts 8 -> 6).
-    if (std::any_of(refused.begin(), refused.end(), [&](const Vec3& r) { return (r - q).norm() < emax; })) continue;
-    ++result.tries;
+  for (;;) {
+    // The next faces to try, one a thread, picked as one thread would pick them if every attempt before were refused.
+    picks.clear();
+    std::vector<Vec3> skip = refused;
+    std::size_t pending = 0;
+    while (picks.size() < lane.size() && result.tries + picks.size() < kTips) {
+      const auto best = std::max_element(distance.begin(), distance.end());
+      if (*best <= tolerance || *best < kShare * farthest) break;
+      ++pending;
+      const TriMesh::FaceHandle face(static_cast<int>(best - distance.begin()));
+      *best = -1;  // (taken)
+      Vec3 a, b, c;
+      geometry::face_points(mesh, face, a, b, c);
+      const Triangles one = {Triangle(to_point(a), to_point(b), to_point(c))};
+      const Farthest far = farthest_point(one, tree, kTolerance, kPiecesPerFace);
+      const Vec3 q = to_vec(tree.closest_point(far.at));
+      // A face next to one whose attempt was refused has its farthest point at the same spot: the attempt would
+      // rebuild the same rings (bunny's attempts 8 -> 6).
+      if (std::any_of(skip.begin(), skip.end(), [&](const Vec3& r) { return (r - q).norm() < emax; })) continue;
+      picks.push_back({face, q, far.distance, pending});
+      pending = 0;
+      skip.push_back(q);
+    }
     // With the tips' first ring count only (the second, where edges were left outside, kept no face cap on the seven
     // models and their benchmark motions, and doubled the time of an attempt).
-    const bool kept = capper.attempt(mesh, fixed, face, q, far.distance, kn + kExtraRings[0], points, capped, marks,
-                                     kFaceGain) == Outcome::kKept;
-    spdlog::debug("face caps: a face {:.4f} from the input: {}", far.distance, kept ? "capped" : "refused");
-    if (!kept) {
-      refused.push_back(q);
-      continue;
+    side_by_side(picks.size(), [&](std::size_t j) {
+      Lane& l = lane[j];
+      l.kept = l.capper.attempt(mesh, fixed, picks[j].face, picks[j].q, picks[j].distance, kn + kExtraRings[0], points,
+                                l.capped, l.marks, kFaceGain) == Outcome::kKept;
+    });
+    // Their outcomes in order, up to the first kept one (the mesh and the faces' distances change there).
+    bool kept = false;
+    for (std::size_t j = 0; j < picks.size(); ++j) {
+      Lane& l = lane[j];
+      if (kept) {
+        l.capper.drop_notes();  // (picked again)
+        continue;
+      }
+      result.candidates += picks[j].candidates;
+      ++result.tries;
+      l.capper.flush_notes();
+      spdlog::debug("face caps: a face {:.4f} from the input: {}", picks[j].distance, l.kept ? "capped" : "refused");
+      if (!l.kept) {
+        refused.push_back(picks[j].q);
+        continue;
+      }
+      kept = true;
+      ++result.capped;
+      result.added += static_cast<long>(l.capped.n_vertices()) - static_cast<long>(mesh.n_vertices());
+      std::swap(mesh, l.capped);
+      std::swap(fixed, l.marks);
+      distance = face_distances(mesh, tree, tolerance);
     }
-    ++result.capped;
-    result.added += static_cast<long>(capped.n_vertices()) - static_cast<long>(mesh.n_vertices());
-    std::swap(mesh, capped);
-    std::swap(fixed, marks);
-    distance = face_distances(mesh, tree, tolerance);
+    if (kept) continue;
+    result.candidates += pending;  // (skipped after the last pick)
+    if (picks.size() < lane.size() || result.tries == kTips) break;  // no face left to pick, or enough tries
   }
   return result;
 }
