@@ -1,0 +1,66 @@
+// The AABB tree's closest-point queries (triangle_tree::Traits: Ericson's closest point on a triangle in CGAL's tree)
+// against CGAL's own projection and against a search of every triangle.
+#include <gtest/gtest.h>
+
+#include <CGAL/squared_distance_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "carbonmesh/remesh/shapes.hpp"
+#include "carbonmesh/remesh/triangle_tree.hpp"
+
+using namespace carbonmesh;
+using namespace carbonmesh::triangle_tree;
+
+namespace {
+
+double area(const Triangle& t) { return std::sqrt(t.squared_area()); }
+
+}  // namespace
+
+// Points all around random triangles (acute, obtuse, long and thin), so that every region of the closest point is
+// met: the three corners, the three edges and the inside.
+TEST(TriangleTree, ClosestPointOnATriangleIsCGALsProjection) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), around(-2.5, 2.5);
+  const Kernel::Construct_projected_point_3 project;
+  int regions[3] = {0, 0, 0};  // closest point at a corner, on an edge, inside
+  for (int k = 0; k < 4000; ++k) {
+    Point a(unit(rng), unit(rng), unit(rng)), b(unit(rng), unit(rng), unit(rng)), c(unit(rng), unit(rng), unit(rng));
+    if (k % 4 == 3) c = Point(a.x() + 0.01 * unit(rng), a.y() + 0.01 * unit(rng), a.z() + 0.01 * unit(rng));  // thin
+    const Triangle t(a, b, c);
+    if (area(t) < 1e-6) continue;
+    for (int j = 0; j < 8; ++j) {
+      const Point p(around(rng), around(rng), around(rng));
+      const Point ours = closest_point_on(t, p), cgal = project(t, p);
+      ASSERT_LT(std::sqrt(CGAL::squared_distance(ours, cgal)), 1e-9) << "triangle " << t << ", point " << p;
+      const bool corner = ours == a || ours == b || ours == c;
+      const double to_plane =
+          std::abs(CGAL::squared_distance(p, t.supporting_plane()) - CGAL::squared_distance(p, ours));
+      ++regions[corner ? 0 : (to_plane < 1e-12 ? 2 : 1)];
+    }
+  }
+  for (const int count : regions) EXPECT_GT(count, 100);
+}
+
+// The tree's distance and closest point are those of the nearest of all the triangles.
+TEST(TriangleTree, DistanceIsTheNearestTriangles) {
+  const Triangles triangles = triangles_of(make_icosphere({5.0, 3}));
+  Tree tree(triangles.begin(), triangles.end());
+  tree.build();
+  tree.accelerate_distance_queries();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> around(-8.0, 8.0);
+  for (int k = 0; k < 500; ++k) {
+    const Point q(around(rng), around(rng), around(rng));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Triangle& t : triangles) nearest = std::min(nearest, CGAL::squared_distance(q, t));
+    const auto [closest, primitive] = tree.closest_point_and_primitive(q);
+    EXPECT_NEAR(tree.squared_distance(q), nearest, 1e-9 * (1 + nearest));
+    EXPECT_NEAR(CGAL::squared_distance(q, closest), nearest, 1e-9 * (1 + nearest));
+    EXPECT_NEAR(CGAL::squared_distance(q, *primitive), nearest, 1e-9 * (1 + nearest));
+  }
+}
