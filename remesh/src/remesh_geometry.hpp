@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "carbonmesh/remesh/closest_point.hpp"
 #include "carbonmesh/remesh/mesh.hpp"
 
 namespace carbonmesh::geometry {
@@ -96,26 +97,7 @@ inline void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
   t2 = OpenMesh::cross(n, t1);
 }
 
-// Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5).
-inline Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = OpenMesh::dot(ab, ap), d2 = OpenMesh::dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = OpenMesh::dot(ab, bp), d4 = OpenMesh::dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = OpenMesh::dot(ab, cp), d6 = OpenMesh::dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
+using carbonmesh::closest_point_on_triangle;  // (closest_point.hpp)
 
 inline double edge_length(const TriMesh& mesh, TriMesh::EdgeHandle e) {
   const auto h = mesh.halfedge_handle(e, 0);
