@@ -10,6 +10,8 @@
 #include <string>
 #include <system_error>
 
+#include <fmt/format.h>
+
 #include "carbonmesh/remesh/error.hpp"
 
 namespace carbonmesh {
@@ -56,8 +58,8 @@ void remove_partial_files_on_interrupt() {
 }
 
 std::filesystem::path partial_path(const std::filesystem::path& target) {
-  const std::string name = "." + target.stem().string() + ".partial-" + std::to_string(::getpid()) +
-                           target.extension().string();
+  const std::string name =
+      fmt::format(".{}.partial-{}{}", target.stem().string(), ::getpid(), target.extension().string());
   return target.parent_path() / name;
 }
 

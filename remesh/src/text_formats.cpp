@@ -47,7 +47,7 @@ class LineReader {
     char* end = nullptr;
     errno = 0;
     const double value = std::strtod(begin, &end);
-    if (end == begin || *end != '\0') fail("'" + printable(token) + "' is not a number");
+    if (end == begin || *end != '\0') fail(fmt::format("'{}' is not a number", printable(token)));
     return value;  // NaN and Inf are reported by the mesh validation, with the vertex index
   }
   long integer(const std::string& token) const {
@@ -55,7 +55,7 @@ class LineReader {
     char* end = nullptr;
     errno = 0;
     const long value = std::strtol(begin, &end, 10);
-    if (end == begin || *end != '\0' || errno == ERANGE) fail("'" + printable(token) + "' is not an integer");
+    if (end == begin || *end != '\0' || errno == ERANGE) fail(fmt::format("'{}' is not an integer", printable(token)));
     return value;
   }
   int line() const { return number_; }

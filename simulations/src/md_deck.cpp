@@ -13,7 +13,7 @@ namespace carbonmesh {
 namespace fs = std::filesystem;
 namespace {
 
-std::string quoted(const fs::path& p) { return "\"" + p.string() + "\""; }
+std::string quoted(const fs::path& p) { return fmt::format("\"{}\"", p.string()); }
 
 bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 

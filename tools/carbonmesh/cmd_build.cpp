@@ -305,7 +305,8 @@ int run_build(BuildOptions& o) {
   // The defect report (as `carbonmesh analyze DIR`), unless --no-report. The structure is written either way.
   if (!o.no_report) {
     try {
-      write_defect_report(dir, dir / "analysis", DefectReportOptions{});
+      const DefectReportOptions report;  // the defaults, as `carbonmesh analyze DIR`
+      write_defect_report(dir, dir / "analysis", report);
       clock.stop("report");
     } catch (const std::exception& e) {
       spdlog::warn("defect report not written: {}", e.what());
