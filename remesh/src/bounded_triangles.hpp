@@ -5,13 +5,14 @@
 #include <cstddef>
 #include <vector>
 
+#include "carbonmesh/remesh/closest_point.hpp"
 #include "carbonmesh/remesh/mesh.hpp"
 #include "remesh_geometry.hpp"
 
 namespace carbonmesh {
 
 inline double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  return (geometry::closest_point_on_triangle(p, a, b, c) - p).norm();
+  return (closest_point_on_triangle(p, a, b, c) - p).norm();
 }
 
 // A triangle with the ball around it: a point farther from the centre than its distance bound plus the radius

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "carbonmesh/remesh/closest_point.hpp"
 #include "carbonmesh/remesh/point_grid.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "remesh_geometry.hpp"
@@ -162,7 +163,7 @@ Vec3 ProjectionTarget::project(const Vec3& v, const std::vector<Vec3>& neighbors
   for (std::size_t j = 0; j < neighbors.size(); ++j) neighbor_lengths[j] = (v - neighbors[j]).norm();
   auto closest = [&](int f) {
     const auto& tri = t.faces[static_cast<std::size_t>(f)];
-    return geometry::closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
+    return closest_point_on_triangle(v, t.points[static_cast<std::size_t>(tri[0])],
                                      t.points[static_cast<std::size_t>(tri[1])],
                                      t.points[static_cast<std::size_t>(tri[2])]);
   };

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 
-#include "carbonmesh/remesh/closest_point.hpp"
 #include "carbonmesh/remesh/mesh.hpp"
 
 namespace carbonmesh::geometry {
@@ -96,8 +95,6 @@ inline void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
   t1 = OpenMesh::cross(n, a).normalized();
   t2 = OpenMesh::cross(n, t1);
 }
-
-using carbonmesh::closest_point_on_triangle;  // (closest_point.hpp)
 
 inline double edge_length(const TriMesh& mesh, TriMesh::EdgeHandle e) {
   const auto h = mesh.halfedge_handle(e, 0);
