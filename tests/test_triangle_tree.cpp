@@ -64,3 +64,38 @@ TEST(TriangleTree, DistanceIsTheNearestTriangles) {
     EXPECT_NEAR(CGAL::squared_distance(q, *primitive), nearest, 1e-9 * (1 + nearest));
   }
 }
+
+// closest_points_from_hints() names the tree's own closest point and primitive: groups of 12 points around a face
+// of a coarser, noisy sphere (the surface fit's samples), each from the hint of a point nearby (its last position).
+TEST(TriangleTree, ClosestPointsFromHintsAreTheTreesResults) {
+  TriMesh surface = make_icosphere({5.0, 3});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> noise(-0.05, 0.05), unit(0.0, 1.0), step(-0.2, 0.2);
+  for (auto v : surface.vertices()) surface.point(v) += Vec3(noise(rng), noise(rng), noise(rng));
+  const Triangles triangles = triangles_of(surface);
+  Tree tree(triangles.begin(), triangles.end());
+  tree.build();
+  tree.accelerate_distance_queries();
+  const Triangles coarse = triangles_of(make_icosphere({5.3, 2}));
+  std::vector<Tree::Primitive_id> listed;
+  std::size_t moved = 0;
+  for (const Triangle& t : coarse) {
+    std::array<Point, 12> points;
+    std::array<Tree::Point_and_primitive_id, 12> hints, expected;
+    for (std::size_t q = 0; q < points.size(); ++q) {
+      double u = unit(rng), v = unit(rng);
+      if (u + v > 1) u = 1 - u, v = 1 - v;
+      const Point p = t[0] + u * (t[1] - t[0]) + v * (t[2] - t[0]);
+      hints[q] = tree.closest_point_and_primitive(Point(p.x() + step(rng), p.y() + step(rng), p.z() + step(rng)));
+      points[q] = p;
+      expected[q] = tree.closest_point_and_primitive(p, hints[q]);
+      moved += expected[q].second != hints[q].second;
+    }
+    closest_points_from_hints(tree, points.data(), hints.data(), points.size(), listed);
+    for (std::size_t q = 0; q < points.size(); ++q) {
+      ASSERT_EQ(hints[q].first, expected[q].first) << "point " << points[q];
+      ASSERT_EQ(hints[q].second, expected[q].second) << "point " << points[q];
+    }
+  }
+  EXPECT_GT(moved, coarse.size());  // most hints were not the answer
+}

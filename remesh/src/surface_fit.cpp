@@ -107,14 +107,24 @@ std::array<Sample, kPoints> face_samples(const Faces& faces, std::size_t i, cons
   const Vec3 face_normal = geometry::triangle_normal(p0, p1, p2);
   const double weight = geometry::triangle_area(p0, p1, p2) / static_cast<double>(kPoints);
   std::array<Sample, kPoints> samples;
+  std::array<Point, kPoints> points;
   for (std::size_t q = 0; q < kPoints; ++q) {
     const auto& b = kQuadrature[q];
-    const Vec3 x = b[0] * p0 + b[1] * p1 + b[2] * p2;
+    points[q] = to_point(b[0] * p0 + b[1] * p1 + b[2] * p2);
+  }
+  if (hinted) {  // the face's points from their last closest points, with one box search (the tree's results)
+    thread_local std::vector<Tree::Primitive_id> listed;
+    closest_points_from_hints(input, points.data(), hints.data() + kPoints * i, kPoints, listed);
+  }
+  for (std::size_t q = 0; q < kPoints; ++q) {
+    const auto& b = kQuadrature[q];
+    const Vec3 x = to_vec(points[q]);
     const std::size_t slot = kPoints * i + q;
     auto& hint = hints[slot];
-    if (hinted) hint = input.closest_point_and_primitive(to_point(x), hint);
-    else if (q > 0) hint = input.closest_point_and_primitive(to_point(x), hints[slot - 1]);
-    else hint = input.closest_point_and_primitive(to_point(x));
+    if (!hinted) {
+      if (q > 0) hint = input.closest_point_and_primitive(points[q], hints[slot - 1]);
+      else hint = input.closest_point_and_primitive(points[q]);
+    }
     const auto& [closest, primitive] = hint;
     const Triangle& s = *primitive;
     Vec3 ns = to_vec(CGAL::ORIGIN + CGAL::cross_product(s[1] - s[0], s[2] - s[0]));
