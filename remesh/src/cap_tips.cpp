@@ -81,6 +81,21 @@ void flips_toward_ideal(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>&
   }
 }
 
+// Edges outside [emin, emax] and vertices off their ideal valence by more than one, in the whole mesh. A cap's splits
+// and collapses move the rings, so that a vertex the attempt moved or flipped can end beyond the rings its region
+// checks (bunny under a rigid motion, with another damping of the relaxations: a face cap kept with 2 short edges and a
+// valence off by 2 outside them).
+std::pair<std::size_t, std::size_t> flaws_everywhere(const TriMesh& mesh, double emin, double emax) {
+  std::size_t outside = 0, off = 0;
+  for (auto e : mesh.edges()) {
+    const double l = geometry::edge_length(mesh, e);
+    outside += l < emin || l > emax ? 1 : 0;
+  }
+  for (auto v : mesh.vertices())
+    if (!mesh.is_isolated(v)) off += std::abs(static_cast<int>(mesh.valence(v)) - ideal_valence(mesh, v)) > 1 ? 1 : 0;
+  return {outside, off};
+}
+
 // How an attempt ended: kept, refused with edges left outside (or faces under 3 degrees), or refused otherwise.
 enum class Outcome { kKept, kFlaws, kRefused };
 
@@ -172,6 +187,15 @@ class TipCapper {
         note("{}: {} rings, a valence off the ideal by more than one", label_, rings);
         return Outcome::kRefused;
       }
+    {
+      const auto [outside_before, off_before] = flaws_everywhere(mesh, emin_, emax_);
+      const auto [outside_after, off_after] = flaws_everywhere(m, emin_, emax_);
+      if (outside_after > outside_before || off_after > off_before) {
+        note("{}: {} rings, {} edges outside and {} valences off by more than one beyond the rings (before {} and {})",
+             label_, rings, outside_after, off_after, outside_before, off_before);
+        return Outcome::kRefused;
+      }
+    }
     local_.faces(m, region_, faces_);
     for (auto f : faces_)
       if (turned_against_input(input_tree_, m, f)) {
