@@ -95,9 +95,9 @@ class SurfaceTree {
 // box search instead of n traversals: the primitives that meet the queries' box grown by the largest hint distance
 // are listed in the tree's traversal order, and each query takes them in that order under the traversal's rule (a
 // primitive whose closest point is no farther than the current one and differs from it replaces it). A primitive
-// off the list is farther than the hint; one the traversal prunes is farther than its current point, or as far in a
-// box as far (then the results may differ in which of two equidistant primitives is named). The surface fit's
-// samples: 12 queries a face.
+// off the list is farther than the hint; one the traversal prunes is farther than its current point, or exactly as
+// far in a box exactly as far (only then may the two name different primitives, at the same distance). The surface
+// fit's samples: 12 queries a face.
 inline void closest_points_from_hints(const Tree& tree, const Point* queries, Tree::Point_and_primitive_id* hints,
                                       std::size_t n, std::vector<Tree::Primitive_id>& listed) {
   if (n == 0 || tree.empty()) return;
