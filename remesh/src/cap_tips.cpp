@@ -187,9 +187,8 @@ class TipCapper {
         note("{}: {} rings, a valence off the ideal by more than one", label_, rings);
         return Outcome::kRefused;
       }
-    {
-      const auto [outside_before, off_before] = flaws_everywhere(mesh, emin_, emax_);
-      const auto [outside_after, off_after] = flaws_everywhere(m, emin_, emax_);
+    if (const auto [outside_after, off_after] = flaws_everywhere(m, emin_, emax_); outside_after + off_after > 0) {
+      const auto [outside_before, off_before] = flaws_everywhere(mesh, emin_, emax_);  // (only then needed)
       if (outside_after > outside_before || off_after > off_before) {
         note("{}: {} rings, {} edges outside and {} valences off by more than one beyond the rings (before {} and {})",
              label_, rings, outside_after, off_after, outside_before, off_before);
