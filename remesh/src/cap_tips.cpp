@@ -86,11 +86,9 @@ void flips_toward_ideal(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>&
 // checks (bunny under a rigid motion, with another damping of the relaxations: a face cap kept with 2 short edges and a
 // valence off by 2 outside them).
 std::pair<std::size_t, std::size_t> flaws_everywhere(const TriMesh& mesh, double emin, double emax) {
-  std::size_t outside = 0, off = 0;
-  for (auto e : mesh.edges()) {
-    const double l = geometry::edge_length(mesh, e);
-    outside += l < emin || l > emax ? 1 : 0;
-  }
+  const EdgeStats edges = edge_stats(mesh, {emin, emax});
+  const std::size_t outside = edges.long_edges + edges.short_edges;
+  std::size_t off = 0;
   for (auto v : mesh.vertices())
     if (!mesh.is_isolated(v)) off += std::abs(static_cast<int>(mesh.valence(v)) - ideal_valence(mesh, v)) > 1 ? 1 : 0;
   return {outside, off};
