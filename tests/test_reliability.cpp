@@ -196,18 +196,20 @@ TEST(BadInputCorpus, ModelsInTheWrongUnitsAreRefusedNotRemeshedForever) {
   EXPECT_EQ(summary["remesh"]["topology_violation"], false);
 }
 
+// [2.4, 2.9] (emin 0.83 emax): [2.2, 2.9] converged in 5 iterations since the nonlinear optimizer's damping follows
+// its gain ratio (session 47; it had left 1 short edge).
 TEST(BadInputCorpus, TooTightIntervalWarnsRunsAndReportsTheEdgesLeft) {
   const auto dir = fresh_dir("tight");
   save_mesh(make_icosphere({10.0, 2}), dir / "sphere.off");
   const CliRun r = run_cli(dir, "remesh " + (dir / "sphere.off").string() + " " + (dir / "tight.off").string() +
-                                 " --emin 2.2 --emax 2.9 --iterations 5 --json");
+                                 " --emin 2.4 --emax 2.9 --iterations 5 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("too tight"), std::string::npos) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_FALSE(j["converged"].get<bool>());
   EXPECT_FALSE(j["topology_violation"].get<bool>());
   const std::string left = std::to_string(j["long"].get<std::size_t>()) + " long and " +
-                           std::to_string(j["short"].get<std::size_t>()) + " short edges remain outside [2.2, 2.9]";
+                           std::to_string(j["short"].get<std::size_t>()) + " short edges remain outside [2.4, 2.9]";
   EXPECT_GT(j["long"].get<std::size_t>() + j["short"].get<std::size_t>(), 0u);
   EXPECT_NE(r.err.find(left), std::string::npos) << "expected '" << left << "' in: " << r.err;
   EXPECT_TRUE(fs::is_regular_file(dir / "tight.off")) << "the best mesh is written";
