@@ -3,6 +3,13 @@
 #include "carbonmesh/remesh/remesh_steps.hpp"
 
 namespace carbonmesh {
+namespace {
+
+// Stellar rounds in a row that may fail to lower the count of long and short edges before the post-processing ends
+// (with one, a sphere with 4% noise built at 20000 atoms kept 6 of 1864 outside: 6 -> 9 after its one stellar round).
+constexpr int kPatience = 3;
+
+}  // namespace
 
 int post_process(TriMesh& mesh, int kn, double emin, double emax) {
   const EdgeInterval interval{emin, emax};
@@ -13,24 +20,29 @@ int post_process(TriMesh& mesh, int kn, double emin, double emax) {
   };
   std::size_t best = troubling(mesh);
   TriMesh saved = mesh;
-  int rounds = 0;
+  int rounds = 0, misses = 0;
   // While the number of long and short edges decreases (and some are left). When the optimizer alone
-  // stops improving, one round with the stellar operations on [emin, emax] first is tried (kept only if
-  // it improves).
+  // stops improving, a round with the stellar operations on [emin, emax] first is tried, from the best mesh; while
+  // those rounds do not improve either, up to kPatience of them in a row, each from where the last one left (the best
+  // mesh is what is kept).
   while (best > 0 && rounds < 1000) {
     nonlinear_optimizer(mesh, kn, emin, emax);
     std::size_t now = troubling(mesh);
     if (now >= best) {
-      mesh = saved;
+      if (misses == 0) mesh = saved;
       stellar_operations(mesh, emin, emax, m);
       mesh.garbage_collection();
       correct_valence(mesh, m, &interval);
       nonlinear_optimizer(mesh, kn, emin, emax);
       now = troubling(mesh);
-      if (now >= best) break;
+      if (now >= best) {
+        if (++misses == kPatience) break;
+        continue;
+      }
     }
     best = now;
     saved = mesh;
+    misses = 0;
     ++rounds;
   }
   mesh = saved;

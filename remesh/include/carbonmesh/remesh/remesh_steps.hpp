@@ -357,7 +357,8 @@ std::size_t regularize(TriMesh& mesh, const ProjectionTarget& target, int kn, do
 
 // ---- post_process.cpp (section 4.6) -------------------------------------------------------------------
 
-// Runs the nonlinear optimizer without projection while the number of long+short edges decreases;
+// Runs the nonlinear optimizer without projection while the number of long+short edges decreases; where it stops
+// decreasing, rounds of the stellar operations on [emin, emax] first (up to 3 in a row that do not lower it either);
 // keeps the best state. Returns the number of rounds that improved.
 int post_process(TriMesh& mesh, int kn, double emin, double emax);
 
