@@ -190,6 +190,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   positions(x, at);
   double current = energy(at);
   double mu = 1e-3, nu = 2;  // the damping, and its factor after a failed try (doubled on each)
+  const double diag_floor = 1e-12 * (1 + m2);  // added to each diagonal entry the damping scales (keeps it positive)
   std::vector<double> diag(static_cast<std::size_t>(2 * nv));  // diag(J^T J) of the iteration
   auto term_indices = [&](const Term& t, int idx[4]) {
     int c = 0;
@@ -271,12 +272,12 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       // The damped system: J^T J + mu (diag(J^T J) + a tiny floor).
       if (dense) {
         h_dense = jtj_dense;
-        for (int i = 0; i < dim; ++i) h_dense(i, i) += mu * (jtj_dense(i, i) + 1e-12 * (1 + m2));
+        for (int i = 0; i < dim; ++i) h_dense(i, i) += mu * (diag[i] + diag_floor);
         llt_dense.compute(h_dense);  // positive definite: the damping adds mu times a positive floor
         if (llt_dense.info() != Eigen::Success) break;
         step = -llt_dense.solve(jtr);
       } else {
-        if (!ldlt.factorize(jtj, mu, 1e-12 * (1 + m2))) break;
+        if (!ldlt.factorize(jtj, mu, diag_floor)) break;
         ldlt.solve(jtr, step);
         step = -step;
       }
@@ -292,7 +293,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
         // Nielsen's update (1999): the damping falls by up to 3 as the gain nears what the linearisation predicted,
         // and rises after a poor one (with the old mu / 3, x 4, half the tries failed: bunny's snap 0.36 -> 0.28 s).
         double predicted = -step.dot(jtr);
-        for (int i = 0; i < dim; ++i) predicted += mu * (diag[i] + 1e-12 * (1 + m2)) * step[i] * step[i];
+        for (int i = 0; i < dim; ++i) predicted += mu * (diag[i] + diag_floor) * step[i] * step[i];
         const double rho = predicted > 0 ? gain / predicted : 0.0;
         x = trial;
         at.swap(trial_at);
