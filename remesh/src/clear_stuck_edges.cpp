@@ -7,7 +7,8 @@
 // neighbours moved (an annulus built at 31000 and 45000 atoms). Here each edge still outside gets a few local changes
 // of connectivity, tried in turn: a flip of one of the four edges of its two triangles or of itself, or its collapse.
 // After each the free vertices around it (interior ones, and border ones along their border curves) are relaxed
-// (Error_b with the interval hinge, projected onto the target), and the change is kept only when the region then has
+// (Error_b with the interval hinge, projected onto the target; after the post-processing, where that is refused, once
+// more without projection), and the change is kept only when the region then has
 // fewer edges outside or faces under 3 degrees than before and no face turned over; otherwise it is undone.
 #include <algorithm>
 #include <limits>
@@ -51,8 +52,9 @@ bool outside(const TriMesh& mesh, EH e, double emin, double emax) {
 
 class StuckEdges {
  public:
-  StuckEdges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax)
-      : mesh_(mesh), target_(target), kn_(kn), emin_(emin), emax_(emax), local_(emin, emax) {}
+  StuckEdges(TriMesh& mesh, const ProjectionTarget* target, bool in_place_too, int kn, double emin, double emax)
+      : mesh_(mesh), target_(target), in_place_too_(in_place_too), kn_(kn), emin_(emin), emax_(emax),
+        local_(emin, emax) {}
 
   // Tries the changes for `e` until one is kept.
   bool clear(EH e) {
@@ -121,28 +123,34 @@ class StuckEdges {
     return false;
   }
 
-  // Relaxes the free vertices around `centre`; keeps the result (true) or puts every position back.
+  // Relaxes the free vertices around `centre`, projected onto the target, then (where that is refused and
+  // in_place_too_) again from the same positions without projection; keeps a result (true) or puts every position
+  // back, `first` too.
   bool relaxed(VH centre, std::size_t flaws_before, std::pair<VH, Vec3> first = {VH(), Vec3(0, 0, 0)}) {
-    saved_.clear();
-    if (first.first.is_valid()) saved_.push_back(first);
     local_.collect(mesh_, centre, kn_ + kRelaxRings, inner_);
     variables_.clear();
     for (auto w : inner_)
       if (!mesh_.is_boundary(w) || slides_on_border(mesh_, w)) variables_.push_back(w);
-    bool kept = false;
-    std::size_t last = std::numeric_limits<std::size_t>::max();
-    for (int pass = 0; pass < kPasses && !kept; ++pass) {
-      for (auto w : variables_) saved_.emplace_back(w, mesh_.point(w));
-      optimize_vertices(mesh_, variables_, emin_, emax_);
-      for (auto w : variables_) project_with_ring(mesh_, target_, w, neighbors_);
-      const std::size_t flaws = local_.flaws(mesh_, region_);
-      kept = flaws < flaws_before && !folded();
-      if (flaws >= last) break;
-      last = flaws;
-    }
-    if (!kept)
+    for (const bool project : {true, false}) {
+      if (project ? target_ == nullptr : target_ != nullptr && !in_place_too_) continue;
+      saved_.clear();
+      bool kept = false;
+      std::size_t last = std::numeric_limits<std::size_t>::max();
+      for (int pass = 0; pass < kPasses && !kept; ++pass) {
+        for (auto w : variables_) saved_.emplace_back(w, mesh_.point(w));
+        optimize_vertices(mesh_, variables_, emin_, emax_);
+        if (project)
+          for (auto w : variables_) project_with_ring(mesh_, *target_, w, neighbors_);
+        const std::size_t flaws = local_.flaws(mesh_, region_);
+        kept = flaws < flaws_before && !folded();
+        if (flaws >= last) break;
+        last = flaws;
+      }
+      if (kept) return true;
       for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) mesh_.set_point(it->first, it->second);
-    return kept;
+    }
+    if (first.first.is_valid()) mesh_.set_point(first.first, first.second);
+    return false;
   }
 
   // Some face at a region vertex turned against that vertex's normal before the change.
@@ -156,7 +164,8 @@ class StuckEdges {
   }
 
   TriMesh& mesh_;
-  const ProjectionTarget& target_;
+  const ProjectionTarget* target_;  // null: no projection
+  bool in_place_too_;
   int kn_;
   double emin_, emax_;
   LocalRegion local_;
@@ -167,7 +176,8 @@ class StuckEdges {
 
 }  // namespace
 
-StuckEdgesResult clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax) {
+StuckEdgesResult clear_stuck_edges(TriMesh& mesh, const ProjectionTarget* target, int kn, double emin, double emax,
+                                   bool in_place_too) {
   StuckEdgesResult result;
   const EdgeStats start = edge_stats(mesh, {emin, emax});
   result.outside = start.long_edges + start.short_edges;
@@ -178,7 +188,7 @@ StuckEdgesResult clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target
     result.not_near = true;
     return result;
   }
-  StuckEdges stuck(mesh, target, kn, emin, emax);
+  StuckEdges stuck(mesh, target, in_place_too, kn, emin, emax);
   for (int round = 0; round < kRounds && !result.few_cleared; ++round) {
     std::vector<EH> edges;
     for (auto e : mesh.edges())

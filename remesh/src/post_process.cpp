@@ -1,4 +1,6 @@
 // Section 4.6: post-processing with the nonlinear optimizer and no projection.
+#include <spdlog/spdlog.h>
+
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 
@@ -28,6 +30,7 @@ int post_process(TriMesh& mesh, int kn, double emin, double emax) {
   while (best > 0 && rounds < 1000) {
     nonlinear_optimizer(mesh, kn, emin, emax);
     std::size_t now = troubling(mesh);
+    spdlog::debug("post-processing, round {}: optimizer, {} long and short edges (best {})", rounds + 1, now, best);
     if (now >= best) {
       if (misses == 0) mesh = saved;
       stellar_operations(mesh, emin, emax, m);
@@ -35,6 +38,8 @@ int post_process(TriMesh& mesh, int kn, double emin, double emax) {
       correct_valence(mesh, m, &interval);
       nonlinear_optimizer(mesh, kn, emin, emax);
       now = troubling(mesh);
+      spdlog::debug("post-processing, round {}: stellar round, {} long and short edges (best {})", rounds + 1, now,
+                    best);
       if (now >= best) {
         if (++misses == kPatience) break;
         continue;

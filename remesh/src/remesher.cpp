@@ -418,7 +418,12 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   EdgeStats after_loop = edge_stats(mesh, interval);
   if (after_loop.long_edges + after_loop.short_edges > 0) {
     // Edges neither the optimizer nor the stellar operations reach (a border vertex of valence 3 on a round border).
-    result.stuck_edges_cleared = clear_stuck_edges(mesh, *projection_target, s.kn, s.emin, s.emax).cleared;
+    // After the post-processing (4.6: the optimizer without projection) a change whose projected relaxation is
+    // refused is relaxed in place too: onto an input rougher than the interval (a sphere with 4% radial noise) the
+    // projection took the vertices back where the loop could not fit the interval, and 3 edges stayed outside where a
+    // flip relaxed in place cleared them all.
+    result.stuck_edges_cleared =
+        clear_stuck_edges(mesh, projection_target.get(), s.kn, s.emin, s.emax, result.post_processed).cleared;
     spdlog::debug("stuck edges: {} changes kept", result.stuck_edges_cleared);
     if (result.stuck_edges_cleared > 0) after_loop = edge_stats(mesh, interval);
   }
