@@ -446,16 +446,23 @@ TEST(Remesher, AStalledLoopAfterAnIrregularInputPostProcessesTheLoopsBestMesh) {
   EXPECT_LT(right_triangle_share(cube), 0.1);
 }
 
+// The icosphere (4 subdivisions, radius 29.3) with 4% radial noise (seed `seed`) remeshed in [1.2, 1.8] into `mesh`,
+// without the steps that run once every edge is inside.
+RemeshResult remesh_noisy_icosphere(unsigned seed, TriMesh& mesh) {
+  mesh = test::radial_noise(make_icosphere({29.3, 4}), 0.04, seed);
+  RemeshSettings settings;
+  settings.snap_features = settings.flip_toward_input = settings.fit_surface = settings.minimax_fit = false;
+  return remesh(mesh, settings);
+}
+
 // A loop that stalls on a noisy surface (4% radial noise at about 9000 vertices: noise at the edge scale) hands
 // 1500-1800 edges outside to the post-processing (seeds 1-10: 1571-1747), whose nonlinear optimizer and stellar
 // rounds bring them down to a few. A stellar round that does not lower that count does not end it: with only one
 // allowed, this seed kept a long edge (and 75.8% regular vertices); with up to three in a row every edge ends inside
 // (session 47).
 TEST(PostProcess, GoesOnAfterAStellarRoundThatDidNotHelp) {
-  TriMesh mesh = test::radial_noise(make_icosphere({29.3, 4}), 0.04, 7);
-  RemeshSettings settings;
-  settings.snap_features = settings.flip_toward_input = settings.fit_surface = settings.minimax_fit = false;
-  const RemeshResult r = remesh(mesh, settings);
+  TriMesh mesh;
+  const RemeshResult r = remesh_noisy_icosphere(7, mesh);
   EXPECT_TRUE(r.post_processed);
   EXPECT_EQ(r.long_edges + r.short_edges, 0u);
   EXPECT_EQ(edges_outside(mesh), 0u);
@@ -466,10 +473,8 @@ TEST(PostProcess, GoesOnAfterAStellarRoundThatDidNotHelp) {
 // the relaxation projected onto the input is refused: on this input (radial noise of 4%, rougher than the interval)
 // every projected one was, and seed 2 ended with 2 long and 1 short edges; relaxed in place, one flip clears all three.
 TEST(PostProcess, StuckEdgesAfterItAreAlsoRelaxedInPlace) {
-  TriMesh mesh = test::radial_noise(make_icosphere({29.3, 4}), 0.04, 2);
-  RemeshSettings settings;
-  settings.snap_features = settings.flip_toward_input = settings.fit_surface = settings.minimax_fit = false;
-  const RemeshResult r = remesh(mesh, settings);
+  TriMesh mesh;
+  const RemeshResult r = remesh_noisy_icosphere(2, mesh);
   EXPECT_TRUE(r.post_processed);
   EXPECT_GE(r.stuck_edges_cleared, 1u);
   EXPECT_EQ(r.long_edges + r.short_edges, 0u);
