@@ -585,7 +585,7 @@ TEST(Remesher, StuckEdgesAreNotTriedWhenMostEdgesAreOutside) {
   const TriMesh before = mesh;
   const ProjectionTarget target(before);
   ASSERT_GT(edge_stats(mesh, {1.2, 1.8}).short_edges, mesh.n_edges() / 2);
-  const StuckEdgesResult r = clear_stuck_edges(mesh, &target, 2, 1.2, 1.8);
+  const StuckEdgesResult r = clear_stuck_edges(mesh, target, 2, 1.2, 1.8);
   EXPECT_TRUE(r.not_near);
   EXPECT_EQ(r.tried, 0u);
   EXPECT_EQ(r.cleared, 0u);
@@ -605,7 +605,7 @@ TEST(Remesher, StuckEdgesEndWhenFewOfThoseTriedAreCleared) {
   const EdgeStats before = edge_stats(mesh, {1.4, 1.8});
   ASSERT_GT(before.long_edges + before.short_edges, 400u);
   ASSERT_LT(before.long_edges + before.short_edges, mesh.n_edges() / 2);
-  const StuckEdgesResult r = clear_stuck_edges(mesh, &target, 2, 1.4, 1.8);
+  const StuckEdgesResult r = clear_stuck_edges(mesh, target, 2, 1.4, 1.8);
   EXPECT_FALSE(r.not_near);
   EXPECT_EQ(r.outside, before.long_edges + before.short_edges);
   EXPECT_EQ(r.cleared, 0u);

@@ -8,8 +8,8 @@
 // of connectivity, tried in turn: a flip of one of the four edges of its two triangles or of itself, or its collapse.
 // After each the free vertices around it (interior ones, and border ones along their border curves) are relaxed
 // (Error_b with the interval hinge, projected onto the target; after the post-processing, where that is refused, once
-// more without projection), and the change is kept only when the region then has
-// fewer edges outside or faces under 3 degrees than before and no face turned over; otherwise it is undone.
+// more without projection), and the change is kept only when the region then has fewer edges outside or faces under 3
+// degrees than before and no face turned over; otherwise it is undone.
 #include <algorithm>
 #include <limits>
 #include <utility>
@@ -52,7 +52,7 @@ bool outside(const TriMesh& mesh, EH e, double emin, double emax) {
 
 class StuckEdges {
  public:
-  StuckEdges(TriMesh& mesh, const ProjectionTarget* target, bool in_place_too, int kn, double emin, double emax)
+  StuckEdges(TriMesh& mesh, const ProjectionTarget& target, bool in_place_too, int kn, double emin, double emax)
       : mesh_(mesh), target_(target), in_place_too_(in_place_too), kn_(kn), emin_(emin), emax_(emax),
         local_(emin, emax) {}
 
@@ -132,7 +132,7 @@ class StuckEdges {
     for (auto w : inner_)
       if (!mesh_.is_boundary(w) || slides_on_border(mesh_, w)) variables_.push_back(w);
     for (const bool project : {true, false}) {
-      if (project ? target_ == nullptr : target_ != nullptr && !in_place_too_) continue;
+      if (!project && !in_place_too_) break;
       saved_.clear();
       bool kept = false;
       std::size_t last = std::numeric_limits<std::size_t>::max();
@@ -140,7 +140,7 @@ class StuckEdges {
         for (auto w : variables_) saved_.emplace_back(w, mesh_.point(w));
         optimize_vertices(mesh_, variables_, emin_, emax_);
         if (project)
-          for (auto w : variables_) project_with_ring(mesh_, *target_, w, neighbors_);
+          for (auto w : variables_) project_with_ring(mesh_, target_, w, neighbors_);
         const std::size_t flaws = local_.flaws(mesh_, region_);
         kept = flaws < flaws_before && !folded();
         if (flaws >= last) break;
@@ -164,7 +164,7 @@ class StuckEdges {
   }
 
   TriMesh& mesh_;
-  const ProjectionTarget* target_;  // null: no projection
+  const ProjectionTarget& target_;
   bool in_place_too_;
   int kn_;
   double emin_, emax_;
@@ -176,7 +176,7 @@ class StuckEdges {
 
 }  // namespace
 
-StuckEdgesResult clear_stuck_edges(TriMesh& mesh, const ProjectionTarget* target, int kn, double emin, double emax,
+StuckEdgesResult clear_stuck_edges(TriMesh& mesh, const ProjectionTarget& target, int kn, double emin, double emax,
                                    bool in_place_too) {
   StuckEdgesResult result;
   const EdgeStats start = edge_stats(mesh, {emin, emax});

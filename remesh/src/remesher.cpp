@@ -423,7 +423,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // projection took the vertices back where the loop could not fit the interval, and 3 edges stayed outside where a
     // flip relaxed in place cleared them all.
     result.stuck_edges_cleared =
-        clear_stuck_edges(mesh, projection_target.get(), s.kn, s.emin, s.emax, result.post_processed).cleared;
+        clear_stuck_edges(mesh, *projection_target, s.kn, s.emin, s.emax, result.post_processed).cleared;
     spdlog::debug("stuck edges: {} changes kept", result.stuck_edges_cleared);
     if (result.stuck_edges_cleared > 0) after_loop = edge_stats(mesh, interval);
   }
