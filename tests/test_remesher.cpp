@@ -446,10 +446,10 @@ TEST(Remesher, AStalledLoopAfterAnIrregularInputPostProcessesTheLoopsBestMesh) {
   EXPECT_LT(right_triangle_share(cube), 0.1);
 }
 
-// The icosphere (4 subdivisions, radius 29.3) with 4% radial noise (seed `seed`) remeshed in [1.2, 1.8] into `mesh`,
+// The icosphere (4 subdivisions, radius 29.3) with radial noise (`sigma`, `seed`) remeshed in [1.2, 1.8] into `mesh`,
 // without the steps that run once every edge is inside.
-RemeshResult remesh_noisy_icosphere(unsigned seed, TriMesh& mesh) {
-  mesh = test::radial_noise(make_icosphere({29.3, 4}), 0.04, seed);
+RemeshResult remesh_noisy_icosphere(double sigma, unsigned seed, TriMesh& mesh) {
+  mesh = test::radial_noise(make_icosphere({29.3, 4}), sigma, seed);
   RemeshSettings settings;
   settings.snap_features = settings.flip_toward_input = settings.fit_surface = settings.minimax_fit = false;
   return remesh(mesh, settings);
@@ -462,7 +462,7 @@ RemeshResult remesh_noisy_icosphere(unsigned seed, TriMesh& mesh) {
 // (session 47).
 TEST(PostProcess, GoesOnAfterAStellarRoundThatDidNotHelp) {
   TriMesh mesh;
-  const RemeshResult r = remesh_noisy_icosphere(7, mesh);
+  const RemeshResult r = remesh_noisy_icosphere(0.04, 7, mesh);
   EXPECT_TRUE(r.post_processed);
   EXPECT_EQ(r.long_edges + r.short_edges, 0u);
   EXPECT_EQ(edges_outside(mesh), 0u);
@@ -474,7 +474,20 @@ TEST(PostProcess, GoesOnAfterAStellarRoundThatDidNotHelp) {
 // every projected one was, and seed 2 ended with 2 long and 1 short edges; relaxed in place, one flip clears all three.
 TEST(PostProcess, StuckEdgesAfterItAreAlsoRelaxedInPlace) {
   TriMesh mesh;
-  const RemeshResult r = remesh_noisy_icosphere(2, mesh);
+  const RemeshResult r = remesh_noisy_icosphere(0.04, 2, mesh);
+  EXPECT_TRUE(r.post_processed);
+  EXPECT_GE(r.stuck_edges_cleared, 1u);
+  EXPECT_EQ(r.long_edges + r.short_edges, 0u);
+  EXPECT_EQ(edges_outside(mesh), 0u);
+  EXPECT_TRUE(topology(mesh).same_type(r.before));
+}
+
+// On a crumpled surface (8% radial noise: more than an edge) faces near the edges left outside are turned over before
+// any change; a change may not add to them, but they do not refuse it: seed 9 kept 2 short edges at a vertex of
+// valence 4 when every change was refused for them (a flip relaxed in place clears both).
+TEST(PostProcess, StuckEdgesOnACrumpledSurfaceAreCleared) {
+  TriMesh mesh;
+  const RemeshResult r = remesh_noisy_icosphere(0.08, 9, mesh);
   EXPECT_TRUE(r.post_processed);
   EXPECT_GE(r.stuck_edges_cleared, 1u);
   EXPECT_EQ(r.long_edges + r.short_edges, 0u);

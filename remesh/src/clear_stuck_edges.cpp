@@ -9,7 +9,8 @@
 // After each the free vertices around it (interior ones, and border ones along their border curves) are relaxed
 // (Error_b with the interval hinge, projected onto the target; after the post-processing, where that is refused, once
 // more without projection), and the change is kept only when the region then has fewer edges outside or faces under 3
-// degrees than before and no face turned over; otherwise it is undone.
+// degrees than before and no more faces turned over than before (on a crumpled surface some are before any change);
+// otherwise it is undone.
 #include <algorithm>
 #include <limits>
 #include <utility>
@@ -64,6 +65,7 @@ class StuckEdges {
     const std::size_t flaws_before = local_.flaws(mesh_, region_);
     normals_.clear();
     for (auto v : region_) normals_.emplace_back(v, geometry::vertex_normal(mesh_, v));
+    turned_before_ = turned();  // not 0 on a crumpled surface: a change may not add to them
     // The flips: the four edges of the two triangles (a border vertex among them gets an edge more), then e.
     std::vector<EH> flips;
     for (auto g : {h, mesh_.opposite_halfedge_handle(h)}) {
@@ -142,7 +144,7 @@ class StuckEdges {
         if (project)
           for (auto w : variables_) project_with_ring(mesh_, target_, w, neighbors_);
         const std::size_t flaws = local_.flaws(mesh_, region_);
-        kept = flaws < flaws_before && !folded();
+        kept = flaws < flaws_before && turned() <= turned_before_;
         if (flaws >= last) break;
         last = flaws;
       }
@@ -153,14 +155,16 @@ class StuckEdges {
     return false;
   }
 
-  // Some face at a region vertex turned against that vertex's normal before the change.
-  bool folded() const {
+  // Faces at region vertices turned against that vertex's normal before the change (a face counted at each of its
+  // region corners).
+  std::size_t turned() const {
+    std::size_t count = 0;
     for (const auto& [v, n] : normals_) {
       if (mesh_.status(v).deleted()) continue;
       for (auto f : mesh_.vf_range(v))
-        if (OpenMesh::dot(n, geometry::face_normal(mesh_, f)) < geometry::kMaxNormalTurnCos) return true;
+        count += OpenMesh::dot(n, geometry::face_normal(mesh_, f)) < geometry::kMaxNormalTurnCos;
     }
-    return false;
+    return count;
   }
 
   TriMesh& mesh_;
@@ -171,6 +175,7 @@ class StuckEdges {
   LocalRegion local_;
   std::vector<VH> region_, inner_, variables_;
   std::vector<std::pair<VH, Vec3>> normals_, saved_;
+  std::size_t turned_before_ = 0;
   std::vector<Vec3> neighbors_;
 };
 

@@ -202,12 +202,12 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
 
 // Each edge outside [emin, emax] gets local changes of connectivity in turn (a flip of one of the four edges of its
 // triangles or of itself, then its collapse), each followed by a relaxation of the free vertices around it (Error_b
-// with the interval hinge, projected onto `target`; where that is refused and `in_place_too`, once more from the same
-// positions without projection, as the post-processing of section 4.6 relaxes) and kept only when the region then has
-// fewer edges outside or faces under 3 degrees and no face turned over; otherwise undone. These changes are for a few
-// stuck edges: nothing is tried when more than half the edges are outside (a mesh not near the interval: flips and
-// collapses do not shorten much longer edges), and the step ends once 200 edges were tried and fewer than one in 10
-// cleared.
+// with the interval hinge, projected onto `target`; where that is refused and `in_place_too`, once more from the
+// same positions without projection, as the post-processing of section 4.6 relaxes) and kept only when the region
+// then has fewer edges outside or faces under 3 degrees and no more faces turned over than before; otherwise undone.
+// These changes are for a few stuck edges: nothing is tried when more than half the edges are outside (a mesh not
+// near the interval: flips and collapses do not shorten much longer edges), and the step ends once 200 edges were
+// tried and fewer than one in 10 cleared.
 struct StuckEdgesResult {
   std::size_t outside = 0;   // edges outside [emin, emax] at the start
   std::size_t tried = 0;     // edges whose changes were tried
