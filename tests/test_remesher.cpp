@@ -455,6 +455,14 @@ RemeshResult remesh_noisy_icosphere(double sigma, unsigned seed, TriMesh& mesh) 
   return remesh(mesh, settings);
 }
 
+// The remesh `r` of `mesh` post-processed and ended with every edge inside and the input's surface type.
+void expect_post_processed_inside(const RemeshResult& r, const TriMesh& mesh) {
+  EXPECT_TRUE(r.post_processed);
+  EXPECT_EQ(r.long_edges + r.short_edges, 0u);
+  EXPECT_EQ(edges_outside(mesh), 0u);
+  EXPECT_TRUE(topology(mesh).same_type(r.before));
+}
+
 // A loop that stalls on a noisy surface (4% radial noise at about 9000 vertices: noise at the edge scale) hands
 // 1500-1800 edges outside to the post-processing (seeds 1-10: 1571-1747), whose nonlinear optimizer and stellar
 // rounds bring them down to a few. A stellar round that does not lower that count does not end it: with only one
@@ -463,10 +471,7 @@ RemeshResult remesh_noisy_icosphere(double sigma, unsigned seed, TriMesh& mesh) 
 TEST(PostProcess, GoesOnAfterAStellarRoundThatDidNotHelp) {
   TriMesh mesh;
   const RemeshResult r = remesh_noisy_icosphere(0.04, 7, mesh);
-  EXPECT_TRUE(r.post_processed);
-  EXPECT_EQ(r.long_edges + r.short_edges, 0u);
-  EXPECT_EQ(edges_outside(mesh), 0u);
-  EXPECT_TRUE(topology(mesh).same_type(r.before));
+  expect_post_processed_inside(r, mesh);
 }
 
 // The changes for the edges the post-processing leaves are relaxed in place too, as the post-processing relaxes, where
@@ -475,11 +480,8 @@ TEST(PostProcess, GoesOnAfterAStellarRoundThatDidNotHelp) {
 TEST(PostProcess, StuckEdgesAfterItAreAlsoRelaxedInPlace) {
   TriMesh mesh;
   const RemeshResult r = remesh_noisy_icosphere(0.04, 2, mesh);
-  EXPECT_TRUE(r.post_processed);
+  expect_post_processed_inside(r, mesh);
   EXPECT_GE(r.stuck_edges_cleared, 1u);
-  EXPECT_EQ(r.long_edges + r.short_edges, 0u);
-  EXPECT_EQ(edges_outside(mesh), 0u);
-  EXPECT_TRUE(topology(mesh).same_type(r.before));
 }
 
 // On a crumpled surface (8% radial noise: more than an edge) faces near the edges left outside are turned over before
@@ -488,11 +490,8 @@ TEST(PostProcess, StuckEdgesAfterItAreAlsoRelaxedInPlace) {
 TEST(PostProcess, StuckEdgesOnACrumpledSurfaceAreCleared) {
   TriMesh mesh;
   const RemeshResult r = remesh_noisy_icosphere(0.08, 9, mesh);
-  EXPECT_TRUE(r.post_processed);
+  expect_post_processed_inside(r, mesh);
   EXPECT_GE(r.stuck_edges_cleared, 1u);
-  EXPECT_EQ(r.long_edges + r.short_edges, 0u);
-  EXPECT_EQ(edges_outside(mesh), 0u);
-  EXPECT_TRUE(topology(mesh).same_type(r.before));
 }
 
 // And whatever the loop leaves, an input with every edge inside never ends with an edge outside: where the
