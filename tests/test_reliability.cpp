@@ -19,6 +19,7 @@
 #include "carbonmesh/remesh/io.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "carbonmesh/simulations/lammps_atoms.hpp"
+#include "test_meshes.hpp"
 #include "test_paths.hpp"
 
 namespace fs = std::filesystem;
@@ -213,4 +214,43 @@ TEST(BadInputCorpus, TooTightIntervalWarnsRunsAndReportsTheEdgesLeft) {
   EXPECT_GT(j["long"].get<std::size_t>() + j["short"].get<std::size_t>(), 0u);
   EXPECT_NE(r.err.find(left), std::string::npos) << "expected '" << left << "' in: " << r.err;
   EXPECT_TRUE(fs::is_regular_file(dir / "tight.off")) << "the best mesh is written";
+}
+
+TEST(BadInputCorpus, SnapToleranceMustBeFiniteAndNotNegative) {
+  const auto dir = fresh_dir("snap_tolerance_bad");
+  save_mesh(make_icosphere({10.0, 2}), dir / "sphere.off");
+  for (const std::string value : {"nan", "inf", "-1"}) {
+    const CliRun r = run_cli(dir, "remesh " + (dir / "sphere.off").string() + " " + (dir / "out.off").string() +
+                                   " --emin 1.2 --emax 1.8 --snap-tolerance " + value);
+    EXPECT_EQ(r.exit_code, kExitBadInput) << value << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("--snap-tolerance " + value), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.off"));
+  }
+}
+
+// The snap tolerance decides which input points count as cut off: on a sphere with 2% radial noise some are farther
+// than the default, and with a tolerance beyond every distance the snap, the flips toward the input and the minimax
+// fit leave the mesh as it is; every edge is inside either way.
+TEST(RemeshCli, SnapToleranceSetsWhichInputPointsAreChased) {
+  const auto dir = fresh_dir("snap_tolerance");
+  save_mesh(test::scaled(test::radial_noise(make_icosphere({20.0, 3}), 0.02, 1), 2.25), dir / "noisy.off");
+  auto remesh_json = [&](const std::string& extra) {
+    const CliRun r = run_cli(dir, "remesh " + (dir / "noisy.off").string() + " " + (dir / "out.off").string() +
+                                   " --emin 1.2 --emax 1.8 --json" + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const nlohmann::json chased = remesh_json("");
+  const nlohmann::json left = remesh_json(" --snap-tolerance 100");
+  for (const nlohmann::json* j : {&chased, &left}) {
+    EXPECT_EQ((*j)["long"], 0);
+    EXPECT_EQ((*j)["short"], 0);
+  }
+  EXPECT_GT(chased["snap_max_before"].get<double>(), chased["snap_tolerance"].get<double>() * 1.2);
+  EXPECT_GT(chased["snapped_vertices"].get<int>(), 0);
+  EXPECT_EQ(left["snap_tolerance"], 100.0);
+  EXPECT_EQ(left["snapped_vertices"], 0);
+  EXPECT_EQ(left["data_dependent_flips"], 0);
+  EXPECT_EQ(left["minimax_moves"], 0);
 }

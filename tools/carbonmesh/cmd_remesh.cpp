@@ -1,6 +1,6 @@
 // `carbonmesh remesh IN OUT --emin A --emax B [--iterations 150] [--kl 2] [--kn 2] [--p 0] [--l 0.5]
-//  [--weights mean-value|shape-preserving] [--no-fit] [--no-snap] [--coarse-levels k] [--log convergence.csv]
-//  [--json] [--repair]`
+//  [--weights mean-value|shape-preserving] [--no-fit] [--no-snap] [--snap-tolerance t] [--coarse-levels k]
+//  [--log convergence.csv] [--json] [--repair]`
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -31,7 +31,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
     std::string in, out, log;
     double emin = 0, emax = 0;
     int iterations = 150, kl = 2, kn = 2, p = 0, coarse_levels = 0, stall_limit = RemeshSettings{}.stall_limit;
-    double l = 0.5;
+    double l = 0.5, snap_tolerance = RemeshSettings{}.snap_tolerance;
     ParametrizationWeights weights = ParametrizationWeights::MeanValue;
     bool json = false, repair = false, no_fit = false, no_minimax = false, no_snap = false, no_flips = false;
   };
@@ -64,6 +64,11 @@ void add_remesh_command(CLI::App& app, Action& action) {
   cmd->add_flag("--no-fit", opt->no_fit, "skip the final least-squares fit to the input (every vertex stays on the input, as in the dissertation; default: fit)");
   cmd->add_flag("--no-minimax", opt->no_minimax, "skip moving the vertices where the remeshed surface and the input are farthest apart so that the largest distance falls (default: move)");
   cmd->add_flag("--no-snap", opt->no_snap, "skip moving vertices onto input points the remeshed surface cuts off (ear rims, tips, grooves; default: snap)");
+  cmd->add_option("--snap-tolerance", opt->snap_tolerance,
+                  "distance, as a fraction of emin, beyond which an input point counts as cut off by the remeshed "
+                  "surface: the snap, the flips toward the input, the caps and the minimax fit work on the points "
+                  "and faces farther than it (smaller: nearer the input, slower)")
+      ->default_val(RemeshSettings{}.snap_tolerance);
   cmd->add_flag("--no-flips", opt->no_flips, "skip flipping edges whose faces bridge a groove or cut a ridge of the input where the other diagonal follows it, also those whose other diagonal needs the vertices around relaxed (default: flip)");
   cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
   cmd->add_flag("--json", opt->json, "final summary as one JSON object instead of text");
@@ -76,6 +81,8 @@ void add_remesh_command(CLI::App& app, Action& action) {
         throw InputError(fmt::format("--emax {} must be a positive number", opt->emax));
       if (opt->emin >= opt->emax)
         throw InputError(fmt::format("--emin {} must be smaller than --emax {}", opt->emin, opt->emax));
+      if (!(opt->snap_tolerance >= 0) || !std::isfinite(opt->snap_tolerance))
+        throw InputError(fmt::format("--snap-tolerance {} must be a finite number, not negative", opt->snap_tolerance));
       if (opt->emin > 2.0 / 3.0 * opt->emax)
         spdlog::warn("interval [{}, {}] is too tight: emin > 2/3 emax (dissertation Ineq 5.1), long and short edges may remain",
                      opt->emin, opt->emax);
@@ -96,6 +103,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
       settings.minimax_fit = !opt->no_minimax;
       settings.snap_features = !opt->no_snap;
       settings.flip_toward_input = !opt->no_flips;
+      settings.snap_tolerance = opt->snap_tolerance;
       settings.coarse_levels = opt->coarse_levels;
       std::ostringstream csv;
       csv << "iteration,long,short,percent_regular,mean,std,seconds,nonlinear,level,l\n";
@@ -130,6 +138,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
         j["output"] = opt->out;
         j["emin"] = opt->emin;
         j["emax"] = opt->emax;
+        j["snap_tolerance"] = opt->snap_tolerance;
         std::cout << j.dump(2) << "\n";
       } else {
         std::cout << fmt::format(
