@@ -56,7 +56,8 @@ struct RemeshSettings {
   bool snap_features = true;
   // The same distance is what the flips toward the input, the caps and the minimax fit below work beyond. 0.33
   // (0.25 until session 49): on 92 generated and noisy inputs the RMS distance fell on 52 and rose on 12, the
-  // largest distance fell on 43 and rose on 32, the time fell by 31%, every edge inside (docs/algorithm.md).
+  // largest distance fell on 43 and rose on 32, their time 503 -> 348 s (one run each), every edge inside
+  // (docs/algorithm.md, Snap tolerance).
   double snap_tolerance = 0.33;  // as a fraction of emin
   // After the snap, the input vertices it left farthest from the surface get a vertex of their own with the cap around
   // it rebuilt (cap_tips in remesh_steps.hpp: tips that no move or single split reached), every edge kept inside.
