@@ -9,6 +9,7 @@
 
 #include "defect_report.hpp"
 #include "commands.hpp"
+#include "number_checks.hpp"
 
 namespace carbonmesh::cli {
 namespace fs = std::filesystem;
@@ -37,7 +38,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   cmd->add_option("--mirror-samples", opt->report.settings.mirror.final_samples,
                   "Hausdorff samples a side for the mirror residual (count)")
       ->default_val(100000)
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--no-plots", opt->no_plots, "skip the PNG plots and report.html (no Python needed)");
   cmd->add_option("--python", opt->report.python, "Python with matplotlib for the plots")->default_val("/usr/bin/python3");
   cmd->add_option("--report-script", opt->report.script, "the plot/HTML script (default: tools/analysis_report.py)");

@@ -26,6 +26,7 @@
 #include "carbonmesh/remesh/remesher.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "defect_report.hpp"
 
 namespace carbonmesh::cli {
@@ -363,18 +364,18 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_option("--emin", opt->emin, "lower edge bound of the remesh, A (default 0.8 sqrt(3) b = 1.968 at b = 1.42)");
   cmd->add_option("--emax", opt->emax, "upper edge bound of the remesh, A (default 1.2 sqrt(3) b = 2.951 at b = 1.42)");
   cmd->add_option("--iterations,-n", opt->remesh.iterations, "remesh: maximum iterations")->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--kl", opt->remesh.kl, "remesh: star number of the low-pass filter")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--kn", opt->remesh.kn, "remesh: star number of the nonlinear optimizer")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--p", opt->remesh.p, "remesh: replace the projection mesh every p iterations (0: never)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(non_negative_number());
   cmd->add_option("--l", opt->remesh.l, "remesh: percent of long+short edges that starts the nonlinear optimizer")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(non_negative_number());
   cmd->add_option("--stall-limit", opt->remesh.stall_limit,
                   "remesh: stop after this many iterations without a better mesh (0: never)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(non_negative_number());
   const std::map<std::string, ParametrizationWeights> weights{{"mean-value", ParametrizationWeights::MeanValue},
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};
   cmd->add_option("--weights", opt->remesh.weights, "remesh: mean-value or shape-preserving")
@@ -383,24 +384,24 @@ void add_build_command(CLI::App& app, Action& action) {
                   "remesh: remesh at 2^k times the interval first, then halve every edge k times (default: 1 from "
                   "50000 atoms on, 2 from 200000, 3 from 800000, 4 from 3200000, else 0; the dual optimisation "
                   "starts from every level, coarsest first)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--optimize-iterations", opt->optimize.max_iterations, "dual optimisation: L-BFGS iterations (0: off)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(non_negative_number());
   cmd->add_option("--angle-weight", opt->optimize.angle_weight, "dual optimisation: weight w_a of the angle term (dimensionless, relative to the bond term)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(non_negative_number());
   cmd->add_option("--contact-weight", opt->optimize.contact_weight,
                   "dual optimisation: weight w_c of the contact term on non-bonded atoms closer than sqrt(2) b (per A^2; 0: off)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(non_negative_number());
   cmd->add_option("--surface-weight", opt->optimize.surface_weight, "dual optimisation: weight w_s of the surface-distance term (per A^2)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(non_negative_number());
   cmd->add_flag("--passivate", opt->passivate, "hydrogen on two-coordinated border carbons (C-H 1.09 A)");
   cmd->add_flag("--topology", opt->topology, "also write structure-full.data: atom_style full with Bonds and Angles (other force fields)");
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
-  cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(non_negative_number());
   cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str();
   cmd->add_option("--np", opt->np, "deck: MPI ranks in the mpirun comment line (count)")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->callback([&action, opt] { action = [opt]() -> int { return run_build(*opt); }; });
 }
 

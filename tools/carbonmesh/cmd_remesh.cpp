@@ -16,6 +16,7 @@
 #include "carbonmesh/remesh/io.hpp"
 #include "carbonmesh/remesh/remesher.hpp"
 #include "commands.hpp"
+#include "number_checks.hpp"
 
 namespace carbonmesh::cli {
 namespace {
@@ -41,17 +42,17 @@ void add_remesh_command(CLI::App& app, Action& action) {
   cmd->add_option("out", opt->out, "output mesh (.off .obj .ply .stl)")->required();
   cmd->add_option("--emin", opt->emin, "lower bound of the edge interval (mesh units)")->required();
   cmd->add_option("--emax", opt->emax, "upper bound of the edge interval (mesh units)")->required();
-  cmd->add_option("--iterations,-n", opt->iterations, "maximum number of iterations (n)")->default_val(150)->check(CLI::NonNegativeNumber);
-  cmd->add_option("--kl", opt->kl, "star number of the low-pass filter")->default_val(2)->check(CLI::PositiveNumber);
-  cmd->add_option("--kn", opt->kn, "star number of the nonlinear optimizer")->default_val(2)->check(CLI::PositiveNumber);
-  cmd->add_option("--p", opt->p, "replace the projection mesh every p iterations (0: never)")->default_val(0)->check(CLI::NonNegativeNumber);
+  cmd->add_option("--iterations,-n", opt->iterations, "maximum number of iterations (n)")->default_val(150)->check(non_negative_number());
+  cmd->add_option("--kl", opt->kl, "star number of the low-pass filter")->default_val(2)->check(positive_number());
+  cmd->add_option("--kn", opt->kn, "star number of the nonlinear optimizer")->default_val(2)->check(positive_number());
+  cmd->add_option("--p", opt->p, "replace the projection mesh every p iterations (0: never)")->default_val(0)->check(non_negative_number());
   cmd->add_option("--l", opt->l,
                   "percent of long+short edges at or below which the nonlinear optimizer runs (doubled once the "
                   "low-pass phase finds no new low in 5 iterations)")
-      ->default_val(0.5)->check(CLI::NonNegativeNumber);
+      ->default_val(0.5)->check(non_negative_number());
   cmd->add_option("--stall-limit", opt->stall_limit,
                   "stop after this many iterations without a better mesh and post-process the best one (0: never)")
-      ->default_val(RemeshSettings{}.stall_limit)->check(CLI::NonNegativeNumber);
+      ->default_val(RemeshSettings{}.stall_limit)->check(non_negative_number());
   const std::map<std::string, ParametrizationWeights> weights{{"mean-value", ParametrizationWeights::MeanValue},
                                                              {"shape-preserving", ParametrizationWeights::ShapePreserving}};
   cmd->add_option("--weights", opt->weights, "parametrization weights: mean-value or shape-preserving")
@@ -60,7 +61,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
                   "remesh at 2^k times the interval first, then halve every edge k times (fewer valence defects; "
                   "for fine intervals on large surfaces)")
       ->default_val(0)
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag("--no-fit", opt->no_fit, "skip the final least-squares fit to the input (every vertex stays on the input, as in the dissertation; default: fit)");
   cmd->add_flag("--no-minimax", opt->no_minimax, "skip moving the vertices where the remeshed surface and the input are farthest apart so that the largest distance falls (default: move)");
   cmd->add_flag("--no-snap", opt->no_snap, "skip moving vertices onto input points the remeshed surface cuts off (ear rims, tips, grooves; default: snap)");
@@ -68,7 +69,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
                   "distance, as a fraction of emin, beyond which an input point counts as cut off by the remeshed "
                   "surface: the snap, the flips toward the input, the caps and the minimax fit work on the points "
                   "and faces farther than it (smaller: nearer the input, slower)")
-      ->default_val(RemeshSettings{}.snap_tolerance);
+      ->default_val(RemeshSettings{}.snap_tolerance)->check(non_negative_number());
   cmd->add_flag("--no-flips", opt->no_flips, "skip flipping edges whose faces bridge a groove or cut a ridge of the input where the other diagonal follows it, also those whose other diagonal needs the vertices around relaxed (default: flip)");
   cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
   cmd->add_flag("--json", opt->json, "final summary as one JSON object instead of text");
@@ -81,8 +82,6 @@ void add_remesh_command(CLI::App& app, Action& action) {
         throw InputError(fmt::format("--emax {} must be a positive number", opt->emax));
       if (opt->emin >= opt->emax)
         throw InputError(fmt::format("--emin {} must be smaller than --emax {}", opt->emin, opt->emax));
-      if (!(opt->snap_tolerance >= 0) || !std::isfinite(opt->snap_tolerance))
-        throw InputError(fmt::format("--snap-tolerance {} must be a finite number, not negative", opt->snap_tolerance));
       if (opt->emin > 2.0 / 3.0 * opt->emax)
         spdlog::warn("interval [{}, {}] is too tight: emin > 2/3 emax (dissertation Ineq 5.1), long and short edges may remain",
                      opt->emin, opt->emax);

@@ -14,6 +14,7 @@
 #include "carbonmesh/simulations/baseline.hpp"
 #include "carbonmesh/simulations/simulate.hpp"
 #include "commands.hpp"
+#include "number_checks.hpp"
 
 namespace carbonmesh::cli {
 namespace fs = std::filesystem;
@@ -89,16 +90,16 @@ void add_simulate_command(CLI::App& app, Action& action) {
       "simulate", "REBO2 MD of a build folder (minimise, NVT) with LAMMPS and the stability verdict of the final frame");
   cmd->add_option("dir", opt->dir, "build folder (carbonmesh build -o DIR)")->required();
   cmd->add_option("-o,--output", opt->output, "output folder (default DIR/simulation)");
-  cmd->add_option("--ps", opt->settings.picoseconds, "NVT time (ps)")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--ps", opt->settings.picoseconds, "NVT time (ps)")->capture_default_str()->check(positive_number());
   cmd->add_option("--temp", opt->settings.temperature, "temperature (K)")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--timestep", opt->settings.timestep_fs, "timestep (fs)")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--np", opt->settings.np, "1: in-process liblammps; N > 1: mpirun -np N lmp")->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", opt->settings.seed, "velocity seed (LAMMPS velocity create)")->capture_default_str()->check(CLI::PositiveNumber);
+      ->check(positive_number());
+  cmd->add_option("--seed", opt->settings.seed, "velocity seed (LAMMPS velocity create)")->capture_default_str()->check(positive_number());
   cmd->add_option("--cutoff", opt->settings.stability.cutoff, "C-C bond cutoff of the analysis (A)")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(positive_number());
   cmd->add_option("--potential", opt->potential, "CH.rebo (default: $LAMMPS_POTENTIALS, /usr/share/lammps/potentials)");
   cmd->add_option("--lmp", opt->settings.lmp, "lmp executable for --np > 1")->capture_default_str();
   cmd->add_option("--mpirun", opt->settings.mpirun, "mpirun executable for --np > 1")->capture_default_str();

@@ -10,6 +10,7 @@
 #include "carbonmesh/remesh/io.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "commands.hpp"
+#include "number_checks.hpp"
 
 namespace carbonmesh::cli {
 
@@ -31,7 +32,7 @@ void add_stats_command(CLI::App& app, Action& action) {
                               "over every point of both surfaces)",
                               HausdorffSettings{}.max_tolerance))
       ->default_val(200000)
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--json", opt->json, "one JSON object instead of text");
   cmd->add_flag("--repair", opt->repair, "merge duplicate vertices and drop degenerate/duplicate faces");
   cmd->callback([&action, opt] {
