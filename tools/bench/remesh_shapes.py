@@ -118,6 +118,15 @@ def make_shapes(cli, folder):
     ]
 
 
+def scaled_shape_files(cli, work):
+    """(name, path) of every shape of make_shapes, written to `work` as OFF scaled to the mean edge MEAN_EDGE."""
+    for k, (name, (vertices, faces)) in enumerate(make_shapes(cli, work)):
+        scale = MEAN_EDGE / mean_edge(vertices, faces)
+        path = os.path.join(work, f"shape{k}.off")
+        write_off(path, [tuple(scale * x for x in p) for p in vertices], faces)
+        yield name, path
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
@@ -137,14 +146,11 @@ def main():
              "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     ratios = []
-    for k, (name, (vertices, faces)) in enumerate(make_shapes(cli, work)):
+    for name, src in scaled_shape_files(cli, work):
         if args.only and name not in args.only:
             continue
-        scale = MEAN_EDGE / mean_edge(vertices, faces)
-        src = os.path.join(work, f"shape{k}.off")
-        write_off(src, [tuple(scale * x for x in p) for p in vertices], faces)
-        ours = os.path.join(work, f"shape{k}-out.off")
-        theirs = os.path.join(work, f"shape{k}-cgal.off")
+        ours = src[:-4] + "-out.off"
+        theirs = src[:-4] + "-cgal.off"
         (result, rss), (peer_result, peer_rss) = fastest_of(
             [[cli, "-q", "remesh", src, ours, "--json"] + PROTOCOL,
              [peer, src, theirs, "--target", "1.5", "--iterations", "10"]], args.repeat)

@@ -19,8 +19,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section  # noqa: E402
 from remesh import PROTOCOL, fastest_of, stats  # noqa: E402
-from remesh_shapes import MEAN_EDGE, make_shapes, mean_edge  # noqa: E402
-from unusual_input_table import write_off  # noqa: E402
+from remesh_shapes import scaled_shape_files  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 
@@ -33,11 +32,7 @@ def inputs(args, cli, work):
     else:
         print(f"{args.models} is missing: the seed-protocol models are skipped")
     if not args.no_shapes:
-        for k, (name, (vertices, faces)) in enumerate(make_shapes(cli, work)):
-            scale = MEAN_EDGE / mean_edge(vertices, faces)
-            path = os.path.join(work, f"shape{k}.off")
-            write_off(path, [tuple(scale * x for x in p) for p in vertices], faces)
-            out.append((name, path))
+        out += list(scaled_shape_files(cli, work))
     return out
 
 
