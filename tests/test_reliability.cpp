@@ -17,6 +17,7 @@
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/io.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "carbonmesh/simulations/lammps_atoms.hpp"
 #include "test_meshes.hpp"
@@ -274,4 +275,35 @@ TEST(RemeshCli, SnapToleranceSetsWhichInputPointsAreChased) {
   EXPECT_EQ(left["snapped_vertices"], 0);
   EXPECT_EQ(left["data_dependent_flips"], 0);
   EXPECT_EQ(left["minimax_moves"], 0);
+}
+
+// Debris beside a model (a speck, a stray triangle) has less area than the interval's smallest closed surface and
+// cannot be remeshed into it: `remesh` removes it with a warning, and the model converges as it does alone and gets
+// the steps that start once every edge is inside. Kept, the stray triangle left 3 short edges after 59 iterations.
+TEST(RemeshCli, ComponentsTooSmallForTheIntervalAreRemoved) {
+  const auto dir = fresh_dir("remesh_debris");
+  TriMesh mesh = test::scaled(make_icosphere({10.0, 3}), 2.25);
+  const TriMesh speck = make_icosphere({0.2, 1});
+  test::append_copy(mesh, speck, Vec3(40, 0, 0));
+  mesh.add_face(mesh.add_vertex(Vec3(50, 0, 0)), mesh.add_vertex(Vec3(51, 0, 0)), mesh.add_vertex(Vec3(50.5, 0.8, 0)));
+  save_mesh(mesh, dir / "debris.off");
+  const CliRun r = run_cli(dir, "remesh " + (dir / "debris.off").string() + " " + (dir / "out.off").string() +
+                                    " --emin 1.2 --emax 1.8 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("debris.off: removed 2 components with less area than four triangles of the interval"),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["removed_components"]["removed"], 2);
+  EXPECT_EQ(j["removed_components"]["faces"], speck.n_faces() + 1);
+  EXPECT_EQ(j["long"], 0);
+  EXPECT_EQ(j["short"], 0);
+  EXPECT_TRUE(j["snapped"].get<bool>());
+  EXPECT_GE(j["percent_regular"].get<double>(), 90.0);
+  EXPECT_EQ(topology(load_mesh(dir / "out.off")).components, 1u);
+  // A model of one piece is written as remeshed, nothing removed.
+  const CliRun whole = run_cli(dir, "remesh " + (dir / "out.off").string() + " " + (dir / "again.off").string() +
+                                        " --emin 1.2 --emax 1.8 --json");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(nlohmann::json::parse(whole.out)["removed_components"]["removed"], 0);
 }

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "carbonmesh/remesh/atomic_file.hpp"
+#include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/io.hpp"
 #include "carbonmesh/remesh/remesher.hpp"
@@ -88,6 +89,16 @@ void add_remesh_command(CLI::App& app, Action& action) {
       LoadSettings load;
       load.repair = opt->repair;
       TriMesh mesh = load_mesh(opt->in, load);
+      // Components with less area than four triangles of the interval (a tetrahedron of edge emin, the smallest
+      // closed surface whose edges can all be inside): debris of a scan, a corner a clipping box cut off. Kept, their
+      // edges stay outside (the loop cannot grow them), and the whole mesh then goes without the regularisation,
+      // the snap and the fits, which start once every edge is inside. The largest component always stays.
+      const double smallest_surface = std::sqrt(3.0) * opt->emin * opt->emin;
+      const SmallComponents debris = remove_small_components(mesh, smallest_surface);
+      if (debris.removed > 0)
+        spdlog::warn("{}: removed {} component{} with less area than four triangles of the interval ({:.4g}): {} "
+                     "faces, area {:.4g} in all", opt->in, debris.removed, debris.removed == 1 ? "" : "s",
+                     smallest_surface, debris.faces, debris.area);
       RemeshSettings settings;
       settings.emin = opt->emin;
       settings.emax = opt->emax;
@@ -138,6 +149,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
         j["emin"] = opt->emin;
         j["emax"] = opt->emax;
         j["snap_tolerance"] = opt->snap_tolerance;
+        j["removed_components"] = to_json(debris);
         std::cout << j.dump(2) << "\n";
       } else {
         std::cout << fmt::format(
