@@ -66,6 +66,17 @@ def fastest_of(commands, repeat):
     return list(zip(best, peak))
 
 
+PEER = ["--target", "1.5", "--iterations", "10"]  # CGAL's isotropic_remeshing as the peer runs it
+
+
+def protocol_and_peer(cli, peer, src, ours, theirs, repeat, log=None):
+    """carbonmesh's protocol (src -> ours, its per-iteration CSV to `log` if given) and the CGAL peer (src -> theirs),
+    each the fastest of `repeat` runs, the two taking turns: [(result, peak RSS MiB), (peer's result, peak RSS MiB)]
+    as fastest_of gives them."""
+    return fastest_of([[cli, "-q", "remesh", src, ours] + (["--log", log] if log else []) + ["--json"] + PROTOCOL,
+                       [peer, src, theirs] + PEER], repeat)
+
+
 def turn_ratios(ours, peer):
     """carbonmesh's seconds over CGAL's in each turn (the two runs one after the other), sorted."""
     return sorted(a / max(b, 1e-9) for a, b in zip(ours["turn_seconds"], peer["turn_seconds"]))
@@ -147,9 +158,7 @@ def main():
         src = os.path.join(args.models, model + ".off")
         ours, conv = os.path.join(work, model + ".off"), os.path.join(work, model + ".csv")
         theirs = os.path.join(work, model + "-cgal.off")
-        (result, rss), (peer_result, peer_rss) = fastest_of(
-            [[cli, "-q", "remesh", src, ours, "--log", conv, "--json"] + PROTOCOL,
-             [peer, src, theirs, "--target", "1.5", "--iterations", "10"]], args.repeat)
+        (result, rss), (peer_result, peer_rss) = protocol_and_peer(cli, peer, src, ours, theirs, args.repeat, conv)
         lines.append(row(model, "carbonmesh", result["seconds"], rss, stats(cli, ours, src), result["iterations"]))
         plot_convergence(conv, os.path.join(img_dir, f"convergence-{model}.png"), f"{model}: long + short")
         lines.append(row(model, "CGAL", peer_result["seconds"], peer_rss, stats(cli, theirs, src, repair=True), 10))

@@ -23,7 +23,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section, timed  # noqa: E402
-from remesh import PROTOCOL, stats  # noqa: E402
+from remesh import PEER, PROTOCOL, stats  # noqa: E402
 from unusual_input_table import read_off, write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -134,7 +134,7 @@ def table(cli, peer, args, models, work):
             runs["carbonmesh"].append((json.loads(out)["seconds"], s))
             if worst is None or s["hausdorff"]["max"] > worst[0]:
                 worst = (s["hausdorff"]["max"], seed, farthest_spot(s["hausdorff"], positions, faces))
-            out, _, _ = timed([peer, src, theirs, "--target", "1.5", "--iterations", "10"])
+            out, _, _ = timed([peer, src, theirs] + PEER)
             runs["CGAL"].append((json.loads(out)["seconds"], stats(cli, theirs, src, repair=True)))
             h = s["hausdorff"]
             print(f"{model} motion {seed}: carbonmesh max {h['max']:.4f} RMS {h['rms']:.4f}", flush=True)

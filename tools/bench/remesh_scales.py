@@ -17,7 +17,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section  # noqa: E402
-from remesh import PROTOCOL, fastest_of, ratio_line, stats, turn_ratios  # noqa: E402
+from remesh import protocol_and_peer, ratio_line, stats, turn_ratios  # noqa: E402
 from unusual_input_table import read_off, write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -53,9 +53,7 @@ def table(cli, peer, args, models, work):
             write_off(src, scaled(vertices, factor), faces, digits=17)
             ours = os.path.join(work, f"{model}-{factor:g}-ours.off")
             theirs = os.path.join(work, f"{model}-{factor:g}-cgal.off")
-            (result, _), (peer_result, _) = fastest_of(
-                [[cli, "-q", "remesh", src, ours, "--json"] + PROTOCOL,
-                 [peer, src, theirs, "--target", "1.5", "--iterations", "10"]], args.repeat)
+            (result, _), (peer_result, _) = protocol_and_peer(cli, peer, src, ours, theirs, args.repeat)
             for method, seconds, s in (("carbonmesh", result["seconds"], stats(cli, ours, src)),
                                        ("CGAL", peer_result["seconds"], stats(cli, theirs, src, repair=True))):
                 e, v, h, t = s["edges"], s["valence"], s["hausdorff"], s["topology"]

@@ -19,7 +19,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section  # noqa: E402
-from remesh import PROTOCOL, fastest_of, ratio_line, row, stats  # noqa: E402
+from remesh import protocol_and_peer, ratio_line, row, stats  # noqa: E402
 from unusual_input_table import grid, read_off, star_prism, write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -151,9 +151,7 @@ def main():
             continue
         ours = src[:-4] + "-out.off"
         theirs = src[:-4] + "-cgal.off"
-        (result, rss), (peer_result, peer_rss) = fastest_of(
-            [[cli, "-q", "remesh", src, ours, "--json"] + PROTOCOL,
-             [peer, src, theirs, "--target", "1.5", "--iterations", "10"]], args.repeat)
+        (result, rss), (peer_result, peer_rss) = protocol_and_peer(cli, peer, src, ours, theirs, args.repeat)
         lines.append(row(name, "carbonmesh", result["seconds"], rss, stats(cli, ours, src), result["iterations"]))
         lines.append(row(name, "CGAL", peer_result["seconds"], peer_rss, stats(cli, theirs, src, repair=True), 10))
         if peer_result["seconds"] >= 0.005:  # not to a time below the clock's resolution
