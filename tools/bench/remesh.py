@@ -29,6 +29,13 @@ def stats(cli, mesh, reference, repair=False):
                     (["--repair"] if repair else []))
 
 
+def header(first):
+    """The two header lines of the table whose rows row() writes; `first` names the first column."""
+    return [f"| {first} | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "
+            "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+
+
 def row(model, method, seconds, rss, s, iterations):
     e, v, h, t = s["edges"], s["valence"], s["hausdorff"], s["topology"]
     return (f"| {model} | {method} | {seconds:.2f} | {rss:.0f} | {t['vertices']} | {t['faces']} | {e['long']} | "
@@ -149,10 +156,7 @@ def main():
              "farthest point is known; until session 31 the maximum of the samples and the vertices, which missed "
              "farthest points inside faces: fertility 0.4807 where it is 0.5993). CGAL's output is measured "
              "with `stats --repair` (it can contain degenerate triangles). Written by "
-             "tools/bench/remesh.py.", "",
-             "| model | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "
-             "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "tools/bench/remesh.py.", ""] + header("model")
     ratios, turns, steps = [], {}, []
     for model in models:
         src = os.path.join(args.models, model + ".off")

@@ -20,7 +20,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section  # noqa: E402
-from remesh import protocol_and_peer, ratio_line, row, stats  # noqa: E402
+from remesh import header, protocol_and_peer, ratio_line, row, stats  # noqa: E402
 from unusual_input_table import write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -157,10 +157,7 @@ def main():
              f"CGAL peer of the first table, measured the same way (seconds: the fastest of {args.repeat} runs, the "
              "two methods taking turns). Where `remesh` removed a component with less area than four triangles of "
              "the interval (it warns; the gyroid's box cuts a small piece off at a corner), its Hausdorff figures are "
-             "against the input without that component, CGAL's (which keeps it) against the whole input.", "",
-             "| shape | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "
-             "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "against the input without that component, CGAL's (which keeps it) against the whole input.", ""] + header("shape")
     ratios = []
     with tempfile.TemporaryDirectory(prefix="carbonmesh-isosurfaces-") as work:
         for name, src in shape_files(work, args.only):

@@ -19,7 +19,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section  # noqa: E402
-from remesh import protocol_and_peer, ratio_line, row, stats  # noqa: E402
+from remesh import header, protocol_and_peer, ratio_line, row, stats  # noqa: E402
 from unusual_input_table import grid, read_off, star_prism, write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -141,10 +141,7 @@ def main():
              "tools/bench/remesh_shapes.py and scaled so that their mean edge is 2.25; then the protocol and the "
              f"CGAL peer of the table above, measured the same way (seconds: the fastest of {args.repeat} runs, the "
              "two methods taking turns). The star prism at this scale is 5.6 x 5.9 x 1.9, its tips narrower than "
-             "emin.", "",
-             "| shape | method | seconds | peak RSS MiB | V | F | long | short | % inside | mean | std | "
-             "% regular | % Eval 0 / 1 / >1 | Hausdorff max | Hausdorff RMS | iterations |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "emin.", ""] + header("shape")
     ratios = []
     for name, src in scaled_shape_files(cli, work):
         if args.only and name not in args.only:
