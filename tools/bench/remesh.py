@@ -76,6 +76,12 @@ def fastest_of(commands, repeat):
 PEER = ["--target", "1.5", "--iterations", "10"]  # CGAL's isotropic_remeshing as the peer runs it
 
 
+def programs(build):
+    """(carbonmesh, the CGAL peer) in the CMake build folder `build`."""
+    return (os.path.join(build, "tools", "carbonmesh", "carbonmesh"),
+            os.path.join(build, "tools", "bench", "cgal_remesh"))
+
+
 def protocol_and_peer(cli, peer, src, ours, theirs, repeat, log=None):
     """carbonmesh's protocol (src -> ours, its per-iteration CSV to `log` if given) and the CGAL peer (src -> theirs),
     each the fastest of `repeat` runs, the two taking turns: [(result, peak RSS MiB), (peer's result, peak RSS MiB)]
@@ -135,8 +141,7 @@ def main():
     if not os.path.isdir(args.models):
         print(f"remesh benchmark skipped: {args.models} is missing (the shared models are needed)")
         return 0
-    cli = os.path.join(args.build, "tools", "carbonmesh", "carbonmesh")
-    peer = os.path.join(args.build, "tools", "bench", "cgal_remesh")
+    cli, peer = programs(args.build)
     img_dir = os.path.join(ROOT, "docs", "img")
     os.makedirs(img_dir, exist_ok=True)
     models = sorted(f[:-4] for f in os.listdir(args.models) if f.endswith(".off"))

@@ -23,7 +23,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section, timed  # noqa: E402
-from remesh import PEER, PROTOCOL, stats  # noqa: E402
+from remesh import PEER, PROTOCOL, programs, stats  # noqa: E402
 from unusual_input_table import read_off, write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -88,8 +88,7 @@ def main():
     if not os.path.isdir(args.models):
         print(f"remesh motions benchmark skipped: {args.models} is missing (the shared models are needed)")
         return 0
-    cli = os.path.join(args.build, "tools", "carbonmesh", "carbonmesh")
-    peer = os.path.join(args.build, "tools", "bench", "cgal_remesh")
+    cli, peer = programs(args.build)
     models = sorted(f[:-4] for f in os.listdir(args.models) if f.endswith(".off"))
     if args.only:
         models = [m for m in models if m in args.only]

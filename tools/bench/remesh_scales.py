@@ -17,7 +17,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section  # noqa: E402
-from remesh import protocol_and_peer, ratio_line, stats, turn_ratios  # noqa: E402
+from remesh import programs, protocol_and_peer, ratio_line, stats, turn_ratios  # noqa: E402
 from unusual_input_table import read_off, write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -81,8 +81,7 @@ def main():
     if any(f <= 0 for f in args.scales):
         print("remesh scales benchmark: --scales must be positive", file=sys.stderr)
         return 2
-    cli = os.path.join(args.build, "tools", "carbonmesh", "carbonmesh")
-    peer = os.path.join(args.build, "tools", "bench", "cgal_remesh")
+    cli, peer = programs(args.build)
     available = sorted(f[:-4] for f in os.listdir(args.models) if f.endswith(".off"))
     wanted = args.only if args.only else DEFAULT_MODELS
     models = [m for m in available if m in wanted]
