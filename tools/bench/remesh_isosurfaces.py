@@ -21,7 +21,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_common import machine_line, replace_section  # noqa: E402
 from remesh import header, programs, protocol_and_peer, ratio_line, row, stats  # noqa: E402
-from unusual_input_table import write_off  # noqa: E402
+from unusual_input_table import read_off, write_off  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 MEAN_EDGE = 2.25  # the seed protocol's
@@ -115,12 +115,8 @@ def shape_files(work, only):
 def without_small_components(src, dst, min_area):
     """Writes `src` to `dst` without the components (by shared vertices) of less area than `min_area`, but the
     largest: the surface `remesh` keeps of it (tools/carbonmesh/cmd_remesh.cpp)."""
-    with open(src) as f:
-        words = f.read().split()
-    nv, nf = int(words[1]), int(words[2])
-    vertices = np.array(words[4:4 + 3 * nv], float).reshape(nv, 3)
-    faces = np.array(words[4 + 3 * nv:4 + 3 * nv + 4 * nf], int).reshape(nf, 4)[:, 1:]
-    parent = np.arange(nv)
+    vertices, faces = (np.array(x) for x in read_off(src))
+    parent = np.arange(len(vertices))
 
     def find(v):
         while parent[v] != v:
