@@ -5,8 +5,10 @@
 // spots: faces bridging a groove of the input or cutting across a ridge, where the fit trades one side against the
 // other in the mean. A scan samples both surfaces (remeshed faces at their centroid and edge midpoints, input corners,
 // edge midpoints and face centroids: on a coarse input a crease along an input edge is farthest in its middle, which
-// neither its corners nor the faces' centroids see); spots farther than `tolerance` and than `share` of the largest
-// distance are taken farthest first (those farther than an edge are left: a part of the input was cut off there, which
+// neither its corners nor the faces' centroids see), and the faces of either surface whose samples come within 0.75 of
+// the spots' threshold are bracketed (their farthest point, by branch and bound: a face's farthest point lies at a
+// sample only by chance); spots farther than `tolerance` and than `share` of the largest distance are taken farthest
+// first (those farther than an edge are left: a part of the input was cut off there, which
 // small moves do not mend). Around each spot, the corners of its face and the far corners of its three neighbours move
 // one at a time, along their normal and two tangents, in a pattern search (the step halved when no move gains) over the
 // region: the faces at those vertices. A move is kept if every edge at the vertex stays in [emin, emax], no face at it
@@ -14,7 +16,11 @@
 // falls, or stays and the squared excess of its samples over 0.7 of it falls (so that two balanced maxima can both come
 // down). The distances are those of 15 samples of each region face to the input faces near it and of 15 samples of each
 // input face under the region to the region's faces (the samples nearer the region than the ring of faces around it;
-// the others are the ring's, which no move changes). The result is kept only if the region's largest distance fell for
+// the others are the ring's, which no move changes). Where each vertex alone is held (an edge at an end of the
+// interval, two balanced maxima), joint steps of all the region's vertices follow: the linear program of the largest
+// distance, its rows linearised at the samples and at the faces' bracketed farthest point, under linearised edge
+// lengths in [emin, emax] and a box (minimax_step.hpp, CGAL's exact solver); a step is kept if the same rules hold
+// and the region's bracketed largest distance falls. The result is kept only if the region's largest distance fell for
 // certain: the bound over every point of its faces (branch and bound, as `carbonmesh stats --ref`) and over 153 samples
 // of each input face under it lie below the largest distance the region had (else the search may only have moved it
 // between its samples: it runs again with 45 samples a face, then gives up). Spots run on every thread, each starting
@@ -31,6 +37,7 @@
 #include "carbonmesh/remesh/triangle_tree.hpp"
 #include "bounded_triangles.hpp"
 #include "farthest_point.hpp"
+#include "minimax_step.hpp"
 #include "ordered_schedule.hpp"
 #include "remesh_geometry.hpp"
 #include "threads.hpp"
@@ -45,11 +52,14 @@ constexpr int kCheck = 16;  // the check of a region's result: 153 samples of ea
                             // may only have moved the largest distance between its samples), and the region's
 constexpr double kTolerance = 1e-4;         // own faces bracketed to within this (as carbonmesh stats --ref),
 constexpr std::size_t kPiecesPerFace = 64;  // with at most this many pieces a face
+constexpr double kBracketShare = 0.75;  // the scan brackets the faces whose samples come within this of the threshold
 constexpr double kGain = 1e-6;  // a move must lower the region's largest distance by this fraction at least ...
 constexpr double kExcessGain = 1e-2;  // ... or keep it and lower the excess over kLevel of it by this fraction
 constexpr double kLevel = 0.7;
 constexpr double kFirstStep = 0.1, kLastStep = 0.02;  // the search's steps, as fractions of emin
 constexpr int kSweeps = 24;                            // at most this many sweeps over the movable vertices
+constexpr int kJointSteps = 16;  // at most this many joint steps after the pattern search, kCuts tries a box
+constexpr int kCuts = 3;
 // At most this many spots a round: the farthest set the largest distance, and a search costs 10-100 ms (a 20:1 disc,
 // its whole rim between 0.8 emax and emax from the input, had 61: 3.3 s for a maximum of 2.71 -> 2.61).
 constexpr std::size_t kMaxSpots = 16;
@@ -196,6 +206,42 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
     memory.nearest_point[j] = to_vec(hit.first);
     memory.nearest_position[j] = static_cast<int>(hit.second - triangles.begin());
   }
+  // A face's farthest point is seen only where it lies at a sample: the faces of either surface whose samples come
+  // within kBracketShare of the spots' threshold are bracketed (as the check of a region), and a backward maximum
+  // found so is a spot of the remeshed face nearest it.
+  std::vector<std::pair<double, int>> bracketed;  // (distance, remeshed face position) of input faces bracketed
+  std::vector<int> bracketed_input;               // and the input face of each
+  if (spots_wanted) {
+    double sampled = 0;
+    for (const auto* distances : {&forward, &backward})
+      for (const double d : *distances)
+        if (d <= reach) sampled = std::max(sampled, d);
+    const double near = kBracketShare * std::max(tolerance, share * sampled);
+#pragma omp parallel for schedule(dynamic, 16)
+    for (int i = 0; i < nf; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (forward[k] < near || forward[k] > reach) continue;
+      const Farthest f = farthest_point(Triangles{triangles[k]}, input_tree, kTolerance, kPiecesPerFace);
+      forward[k] = std::max(forward[k], f.distance);
+    }
+    std::vector<int> candidates;
+    for (auto f : input.faces()) {
+      if (input.status(f).deleted()) continue;
+      double d = backward[static_cast<std::size_t>(nv + f.idx())];
+      for (auto v : input.fv_range(f)) d = std::max(d, backward[static_cast<std::size_t>(v.idx())]);
+      for (auto e : input.fe_range(f)) d = std::max(d, backward[static_cast<std::size_t>(nv + ni + e.idx())]);
+      if (d >= near && d <= reach) candidates.push_back(f.idx());
+    }
+    bracketed.assign(candidates.size(), {0.0, -1});
+    bracketed_input = candidates;
+    const int nc = static_cast<int>(candidates.size());
+#pragma omp parallel for schedule(dynamic, 16)
+    for (int i = 0; i < nc; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const Farthest f = farthest_point(Triangles{*(first_input + candidates[k])}, tree, kTolerance, kPiecesPerFace);
+      bracketed[k] = {f.distance, static_cast<int>(tree.closest_point_and_primitive(f.at).second - triangles.begin())};
+    }
+  }
   Scan result;
   // Spots farther than `reach` are out of the search's reach (a part of the input cut off, an input border the
   // remesh does not follow): the share is taken of the largest distance within it.
@@ -205,6 +251,10 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
       result.max = std::max(result.max, d);
       if (d <= reach) within = std::max(within, d);
     }
+  for (const auto& [d, unused] : bracketed) {
+    result.max = std::max(result.max, d);
+    if (d <= reach) within = std::max(within, d);
+  }
   if (!spots_wanted) return result;
   const double threshold = std::max(tolerance, share * within);
   auto spot = [&](double d) { return d > threshold && d <= reach; };
@@ -230,6 +280,13 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
         if (f.is_valid()) list.push_back(f.idx());
       }
     }
+  }
+  for (std::size_t k = 0; k < bracketed.size(); ++k) {
+    const auto [d, position] = bracketed[k];
+    if (!spot(d)) continue;
+    const int owner = faces[static_cast<std::size_t>(position)].idx();
+    result.spots.emplace_back(-d, owner);
+    result.input_faces[static_cast<std::size_t>(owner)].push_back(bracketed_input[k]);
   }
   std::sort(result.spots.begin(), result.spots.end());
   return result;
@@ -301,6 +358,7 @@ class Region {
   }
 
  private:
+  struct Samples;
   // The pattern search over the movable vertices; returns the number of moves kept.
   std::size_t search() {
     samples_ = input_samples(grid_);
@@ -342,7 +400,233 @@ class Region {
       }
       if (!improved) step *= 0.5;
     }
-    return moves;
+    return moves + joint_search();
+  }
+
+  // Steps of every movable vertex at once, after the pattern search: where each vertex alone is held (an edge at an
+  // end of the interval, two balanced maxima), a joint step may still lower the largest distance. Each step solves
+  // the linear program of the distances near the largest (the faces' samples and their farthest point, the input
+  // samples) and the lengths of the edges at the movable vertices, linearised where they are, within a box of
+  // half-width r (minimax_step). It is kept if the rules of a move hold at every vertex and the region's largest
+  // distance (its faces' farthest point, bracketed, and the input samples) falls; if the faces' farthest point rose
+  // instead, that point becomes a row of another try at the same box (kCuts at most), else r is halved.
+  std::size_t joint_search() {
+    std::size_t steps = 0;
+    double radius = kFirstStep * emin_;
+    std::vector<Vec3> start(movable_.size());
+    Farthest farthest = forward_farthest();
+    Nearest nearest = sample_distances(), moved_nearest;
+    double best = std::max(farthest.distance, nearest.max);
+    if (best > emax_) return 0;  // farther than an edge, a part of the input was cut off here: left (as a spot)
+    // Points of the region faces (face position, barycentric weights) where a step's farthest point fell: rows of the
+    // next try at the same box (the samples and the farthest point before the step did not see them rise).
+    std::vector<std::pair<std::size_t, std::array<double, 3>>> cuts;
+    int tries = 0;  // at this box
+    for (int k = 0; k < kJointSteps && radius >= kLastStep * emin_; ++k) {
+      // A distance moves by at most sqrt(3) r (its point does): one below this cannot set the new largest.
+      const double reach = best - 2 * std::sqrt(3.0) * radius;
+      std::vector<LinearRow> distances, lengths;
+      forward_rows(reach, distances);
+      point_row(locate(to_vec(farthest.at)), reach, distances);
+      for (const auto& cut : cuts) point_row(cut, reach, distances);
+      backward_rows(nearest, reach, distances);
+      length_rows(lengths);
+      // A length is convex in the displacements, so above its linearisation: by at most |d_a - d_b|^2 / (2 l).
+      const double upper = emax_ - 6 * radius * radius / emin_;
+      const auto step = minimax_step(distances, lengths, emin_, upper, movable_.size(), radius);
+      bool kept = false, cut = false;
+      if (step) {
+        for (std::size_t m = 0; m < movable_.size(); ++m) {
+          start[m] = mesh_.point(movable_[m]);
+          mesh_.point(movable_[m]) = start[m] + (*step)[m];
+        }
+        if (rules_hold()) {
+          const Farthest moved = forward_farthest();
+          moved_nearest = sample_distances(&nearest);
+          const double now = std::max(moved.distance, moved_nearest.max);
+          if (now < best * (1 - kGain)) {
+            best = now;
+            farthest = moved;
+            std::swap(nearest, moved_nearest);
+            kept = true;
+          } else if (moved.distance >= best * (1 - kGain) && tries < kCuts) {
+            cuts.push_back(locate(to_vec(moved.at)));
+            cut = true;
+          }
+        }
+        if (!kept)
+          for (std::size_t m = 0; m < movable_.size(); ++m) mesh_.point(movable_[m]) = start[m];
+      }
+      if (kept) {
+        ++steps;
+        cuts.clear();
+        tries = 0;
+      } else if (cut) {
+        ++tries;
+      } else {
+        radius *= 0.5;
+        tries = 0;
+      }
+    }
+    return steps;
+  }
+
+  // The region face nearest p, and p's barycentric weights on it.
+  std::pair<std::size_t, std::array<double, 3>> locate(const Vec3& p) const {
+    const auto triangles = bounded(mesh_, faces_);
+    std::size_t hint = triangles.size();
+    nearest_distance(p, triangles, std::numeric_limits<double>::infinity(), hint);
+    if (hint >= triangles.size()) return {0, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+    const auto& t = triangles[hint];
+    return {hint, barycentric(closest_point_on_triangle(p, t.a, t.b, t.c), t.a, t.b, t.c)};
+  }
+
+  // The row of a point of a region face (its position in faces_, its barycentric weights), if farther than `reach`.
+  void point_row(const std::pair<std::size_t, std::array<double, 3>>& point, double reach,
+                 std::vector<LinearRow>& rows) const {
+    const auto [face, weights] = point;
+    Vec3 a, b, c;
+    geometry::face_points(mesh_, faces_[face], a, b, c);
+    const Vec3 p = weights[0] * a + weights[1] * b + weights[2] * c;
+    const Vec3 q = to_vec(input_tree_.closest_point(to_point(p)));
+    const double d = (p - q).norm();
+    if (d <= reach || d <= 0) return;
+    LinearRow row;
+    row.value = d;
+    add_terms(movable_corners(faces_[face]), weights, (p - q) / d, row);
+    rows.push_back(std::move(row));
+  }
+
+  // The region faces' farthest point from the input (bracketed, as the check).
+  Farthest forward_farthest() const {
+    Triangles triangles;
+    for (auto f : faces_) {
+      Vec3 a, b, c;
+      geometry::face_points(mesh_, f, a, b, c);
+      triangles.emplace_back(to_point(a), to_point(b), to_point(c));
+    }
+    return farthest_point(triangles, input_tree_, kTolerance, kPiecesPerFace * triangles.size());
+  }
+
+  // The search's input samples' distances to the region (or its ring, if nearer: face -1), and the largest.
+  struct Nearest {
+    std::vector<double> distance;
+    std::vector<int> face;  // positions in faces_
+    double max = 0;
+  };
+
+  // `before` (the same samples, another position of the vertices) gives each sample's first face to try.
+  Nearest sample_distances(const Nearest* before = nullptr) const {
+    const auto triangles = bounded(mesh_, faces_);
+    Nearest out;
+    out.distance.resize(samples_.points.size());
+    out.face.resize(samples_.points.size());
+    for (std::size_t k = 0; k < samples_.points.size(); ++k) {
+      std::size_t hint = before && before->face[k] >= 0 ? static_cast<std::size_t>(before->face[k]) : triangles.size();
+      const double d = nearest_distance(samples_.points[k], triangles, samples_.ring[k], hint);
+      out.distance[k] = d;
+      out.face[k] = d < samples_.ring[k] && hint < triangles.size() ? static_cast<int>(hint) : -1;
+      out.max = std::max(out.max, d);
+    }
+    return out;
+  }
+
+  // The movable vertices' positions in movable_ of a face's corners (face_points' order; -1: the corner stays).
+  std::array<int, 3> movable_corners(TriMesh::FaceHandle f) const {
+    std::array<int, 3> out{};
+    auto h = mesh_.halfedge_handle(f);
+    for (int j = 0; j < 3; ++j, h = mesh_.next_halfedge_handle(h)) {
+      const auto it = std::find(movable_.begin(), movable_.end(), mesh_.to_vertex_handle(h));
+      out[static_cast<std::size_t>(j)] = it == movable_.end() ? -1 : static_cast<int>(it - movable_.begin());
+    }
+    return out;
+  }
+
+  static void add_terms(const std::array<int, 3>& corners, const std::array<double, 3>& weights, const Vec3& g,
+                        LinearRow& row) {
+    for (std::size_t j = 0; j < 3; ++j)
+      if (corners[j] >= 0 && weights[j] != 0)
+        row.terms.emplace_back(static_cast<std::size_t>(corners[j]), weights[j] * g);
+  }
+
+  // The search's samples of the region faces, farther than `reach` from the input faces near the region: the distance
+  // grows along (p - c) / |p - c|, c the nearest input point, at the face's corners by their barycentric weights.
+  void forward_rows(double reach, std::vector<LinearRow>& rows) const {
+    for (auto f : faces_) {
+      Vec3 a, b, c;
+      geometry::face_points(mesh_, f, a, b, c);
+      const auto corners = movable_corners(f);
+      std::size_t hint = input_near_.size();
+      for (int i = 0; i <= grid_; ++i)
+        for (int j = 0; j <= grid_ - i; ++j) {
+          const double u = static_cast<double>(i) / grid_, v = static_cast<double>(j) / grid_;
+          const Vec3 p = (1 - u - v) * a + u * b + v * c;
+          const double d = nearest_distance(p, input_near_, std::numeric_limits<double>::infinity(), hint);
+          if (d <= reach || d <= 0 || hint >= input_near_.size()) continue;
+          const auto& t = input_near_[hint];
+          LinearRow row;
+          row.value = d;
+          add_terms(corners, {1 - u - v, u, v}, (p - closest_point_on_triangle(p, t.a, t.b, t.c)) / d, row);
+          rows.push_back(std::move(row));
+        }
+    }
+  }
+
+  // The input samples farther than `reach` from the region and nearer it than the ring: the distance grows along
+  // (q - y) / |q - y|, q the nearest point of the region, at its face's corners by q's barycentric weights.
+  void backward_rows(const Nearest& nearest, double reach, std::vector<LinearRow>& rows) const {
+    for (std::size_t k = 0; k < samples_.points.size(); ++k) {
+      const double d = nearest.distance[k];
+      if (d <= reach || d <= 0 || nearest.face[k] < 0) continue;
+      const auto face = faces_[static_cast<std::size_t>(nearest.face[k])];
+      Vec3 a, b, c;
+      geometry::face_points(mesh_, face, a, b, c);
+      const Vec3& y = samples_.points[k];
+      const Vec3 q = closest_point_on_triangle(y, a, b, c);
+      LinearRow row;
+      row.value = d;
+      add_terms(movable_corners(face), barycentric(q, a, b, c), (q - y) / d, row);
+      rows.push_back(std::move(row));
+    }
+  }
+
+  // The edges at the movable vertices: the length grows along the unit edge vector at one end, against it at the other.
+  void length_rows(std::vector<LinearRow>& rows) const {
+    for (std::size_t m = 0; m < movable_.size(); ++m)
+      for (auto w : mesh_.vv_range(movable_[m])) {
+        const auto it = std::find(movable_.begin(), movable_.end(), w);
+        const auto other = static_cast<std::size_t>(it - movable_.begin());
+        if (it != movable_.end() && other < m) continue;  // taken from the other end
+        const Vec3 e = mesh_.point(movable_[m]) - mesh_.point(w);
+        LinearRow row;
+        row.value = e.norm();
+        const Vec3 unit = e / row.value;
+        row.terms.emplace_back(m, unit);
+        if (it != movable_.end()) row.terms.emplace_back(other, -unit);
+        rows.push_back(std::move(row));
+      }
+  }
+
+  static std::array<double, 3> barycentric(const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 v0 = b - a, v1 = c - a, v2 = q - a;
+    const double d00 = OpenMesh::dot(v0, v0), d01 = OpenMesh::dot(v0, v1), d11 = OpenMesh::dot(v1, v1);
+    const double d20 = OpenMesh::dot(v2, v0), d21 = OpenMesh::dot(v2, v1);
+    const double denominator = d00 * d11 - d01 * d01;
+    if (denominator <= 0) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    const double v = (d11 * d20 - d01 * d21) / denominator, w = (d00 * d21 - d01 * d20) / denominator;
+    return {1 - v - w, v, w};
+  }
+
+  // The rules of a move (try_position's), at every movable vertex.
+  bool rules_hold() const {
+    for (std::size_t m = 0; m < movable_.size(); ++m) {
+      if (!geometry::star_inside(mesh_, movable_[m], emin_, emax_)) return false;
+      for (const int i : at_vertex_[m])
+        if (OpenMesh::dot(geometry::face_normal(mesh_, faces_[static_cast<std::size_t>(i)]),
+                          normals_[static_cast<std::size_t>(i)]) < geometry::kMaxNormalTurnCos)
+          return false;
+    }
+    return true;
   }
 
   // Samples of the input faces under the region that are nearer a region face than any face of the ring around
@@ -576,7 +860,7 @@ MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin,
     result.spots += spots.size();
     // On every thread, with the result of one (OrderedSchedule): a search reads the mesh within 3.6 edges of its
     // spot's centroid (its region and the ring around it), and its vertices move by the sum of its steps at most.
-    const double radius = 4 * emax + kSweeps * kFirstStep * emin;
+    const double radius = 4 * emax + (kSweeps + std::sqrt(3.0) * kJointSteps) * kFirstStep * emin;
     std::vector<Region> regions(static_cast<std::size_t>(max_threads()),
                                 Region(mesh, fixed, surface, input_triangles, input_tree, found, emin, emax));
     std::vector<std::size_t> moves(spots.size(), 0);
