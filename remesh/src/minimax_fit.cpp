@@ -209,6 +209,7 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
   // A face's farthest point is seen only where it lies at a sample: the faces of either surface whose samples come
   // within kBracketShare of the spots' threshold are bracketed (as the check of a region), and a backward maximum
   // found so is a spot of the remeshed face nearest it.
+  std::vector<double> near_forward = forward;     // the faces' distances, bracketed near the threshold
   std::vector<std::pair<double, int>> bracketed;  // (distance, remeshed face position) of input faces bracketed
   std::vector<int> bracketed_input;               // and the input face of each
   if (spots_wanted) {
@@ -222,7 +223,7 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
       const auto k = static_cast<std::size_t>(i);
       if (forward[k] < near || forward[k] > reach) continue;
       const Farthest f = farthest_point(Triangles{triangles[k]}, input_tree, kTolerance, kPiecesPerFace);
-      forward[k] = std::max(forward[k], f.distance);
+      near_forward[k] = std::max(forward[k], f.distance);
     }
     std::vector<int> candidates;
     for (auto f : input.faces()) {
@@ -245,22 +246,21 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
   Scan result;
   // Spots farther than `reach` are out of the search's reach (a part of the input cut off, an input border the
   // remesh does not follow): the share is taken of the largest distance within it.
+  // (Scan::max is the samples', as in the scan after the search.)
   double within = 0;
   for (const auto* distances : {&forward, &backward})
-    for (const double d : *distances) {
-      result.max = std::max(result.max, d);
+    for (const double d : *distances) result.max = std::max(result.max, d);
+  for (const auto* distances : {&near_forward, &backward})
+    for (const double d : *distances)
       if (d <= reach) within = std::max(within, d);
-    }
-  for (const auto& [d, unused] : bracketed) {
-    result.max = std::max(result.max, d);
+  for (const auto& [d, unused] : bracketed)
     if (d <= reach) within = std::max(within, d);
-  }
   if (!spots_wanted) return result;
   const double threshold = std::max(tolerance, share * within);
   auto spot = [&](double d) { return d > threshold && d <= reach; };
   for (int i = 0; i < nf; ++i)
-    if (spot(forward[static_cast<std::size_t>(i)]))
-      result.spots.emplace_back(-forward[static_cast<std::size_t>(i)], faces[static_cast<std::size_t>(i)].idx());
+    if (spot(near_forward[static_cast<std::size_t>(i)]))
+      result.spots.emplace_back(-near_forward[static_cast<std::size_t>(i)], faces[static_cast<std::size_t>(i)].idx());
   result.input_faces.assign(mesh.n_faces(), {});
   for (int k = 0; k < n; ++k) {
     const int position = memory.nearest_position[static_cast<std::size_t>(k)];
