@@ -478,7 +478,7 @@ class Region {
     nearest_distance(p, triangles, std::numeric_limits<double>::infinity(), hint);
     if (hint >= triangles.size()) return {0, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
     const auto& t = triangles[hint];
-    return {hint, barycentric(closest_point_on_triangle(p, t.a, t.b, t.c), t.a, t.b, t.c)};
+    return {hint, geometry::barycentric(closest_point_on_triangle(p, t.a, t.b, t.c), t.a, t.b, t.c)};
   }
 
   // The row of a point of a region face (its position in faces_, its barycentric weights), if farther than `reach`.
@@ -585,7 +585,7 @@ class Region {
       const Vec3 q = closest_point_on_triangle(y, a, b, c);
       LinearRow row;
       row.value = d;
-      add_terms(movable_corners(face), barycentric(q, a, b, c), (q - y) / d, row);
+      add_terms(movable_corners(face), geometry::barycentric(q, a, b, c), (q - y) / d, row);
       rows.push_back(std::move(row));
     }
   }
@@ -605,16 +605,6 @@ class Region {
         if (it != movable_.end()) row.terms.emplace_back(other, -unit);
         rows.push_back(std::move(row));
       }
-  }
-
-  static std::array<double, 3> barycentric(const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 v0 = b - a, v1 = c - a, v2 = q - a;
-    const double d00 = OpenMesh::dot(v0, v0), d01 = OpenMesh::dot(v0, v1), d11 = OpenMesh::dot(v1, v1);
-    const double d20 = OpenMesh::dot(v2, v0), d21 = OpenMesh::dot(v2, v1);
-    const double denominator = d00 * d11 - d01 * d01;
-    if (denominator <= 0) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
-    const double v = (d11 * d20 - d01 * d21) / denominator, w = (d00 * d21 - d01 * d20) / denominator;
-    return {1 - v - w, v, w};
   }
 
   // The rules of a move (try_position's), at every movable vertex.
