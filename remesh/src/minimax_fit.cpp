@@ -8,8 +8,8 @@
 // neither its corners nor the faces' centroids see), and the faces of either surface whose samples come within 0.75 of
 // the spots' threshold are bracketed (their farthest point, by branch and bound: a face's farthest point lies at a
 // sample only by chance); spots farther than `tolerance` and than `share` of the largest distance are taken farthest
-// first (those farther than an edge are left: a part of the input was cut off there, which
-// small moves do not mend). Around each spot, the corners of its face and the far corners of its three neighbours move
+// first (those farther than an edge are left: a part of the input was cut off there, which small moves do not mend).
+// Around each spot, the corners of its face and the far corners of its three neighbours move
 // one at a time, along their normal and two tangents, in a pattern search (the step halved when no move gains) over the
 // region: the faces at those vertices. A move is kept if every edge at the vertex stays in [emin, emax], no face at it
 // gets an angle under 3 degrees or turns by more than ~72 degrees from its start, and the region's largest distance
@@ -209,9 +209,13 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
   // A face's farthest point is seen only where it lies at a sample: the faces of either surface whose samples come
   // within kBracketShare of the spots' threshold are bracketed (as the check of a region), and a backward maximum
   // found so is a spot of the remeshed face nearest it.
-  std::vector<double> near_forward = forward;     // the faces' distances, bracketed near the threshold
-  std::vector<std::pair<double, int>> bracketed;  // (distance, remeshed face position) of input faces bracketed
-  std::vector<int> bracketed_input;               // and the input face of each
+  std::vector<double> near_forward = forward;  // the faces' distances, bracketed near the threshold
+  struct Bracketed {
+    int input_face = -1;
+    double distance = 0;
+    int position = -1;  // of the remeshed face nearest its farthest point
+  };
+  std::vector<Bracketed> bracketed;  // the input faces bracketed
   if (spots_wanted) {
     double sampled = 0;
     for (const auto* distances : {&forward, &backward})
@@ -225,22 +229,20 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
       const Farthest f = farthest_point(Triangles{triangles[k]}, input_tree, kTolerance, kPiecesPerFace);
       near_forward[k] = std::max(forward[k], f.distance);
     }
-    std::vector<int> candidates;
     for (auto f : input.faces()) {
       if (input.status(f).deleted()) continue;
       double d = backward[static_cast<std::size_t>(nv + f.idx())];
       for (auto v : input.fv_range(f)) d = std::max(d, backward[static_cast<std::size_t>(v.idx())]);
       for (auto e : input.fe_range(f)) d = std::max(d, backward[static_cast<std::size_t>(nv + ni + e.idx())]);
-      if (d >= near && d <= reach) candidates.push_back(f.idx());
+      if (d >= near && d <= reach) bracketed.push_back({f.idx()});
     }
-    bracketed.assign(candidates.size(), {0.0, -1});
-    bracketed_input = candidates;
-    const int nc = static_cast<int>(candidates.size());
+    const int nc = static_cast<int>(bracketed.size());
 #pragma omp parallel for schedule(dynamic, 16)
     for (int i = 0; i < nc; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      const Farthest f = farthest_point(Triangles{*(first_input + candidates[k])}, tree, kTolerance, kPiecesPerFace);
-      bracketed[k] = {f.distance, static_cast<int>(tree.closest_point_and_primitive(f.at).second - triangles.begin())};
+      Bracketed& b = bracketed[static_cast<std::size_t>(i)];
+      const Farthest f = farthest_point(Triangles{*(first_input + b.input_face)}, tree, kTolerance, kPiecesPerFace);
+      b.distance = f.distance;
+      b.position = static_cast<int>(tree.closest_point_and_primitive(f.at).second - triangles.begin());
     }
   }
   Scan result;
@@ -253,8 +255,8 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
   for (const auto* distances : {&near_forward, &backward})
     for (const double d : *distances)
       if (d <= reach) within = std::max(within, d);
-  for (const auto& [d, unused] : bracketed)
-    if (d <= reach) within = std::max(within, d);
+  for (const Bracketed& b : bracketed)
+    if (b.distance <= reach) within = std::max(within, b.distance);
   if (!spots_wanted) return result;
   const double threshold = std::max(tolerance, share * within);
   auto spot = [&](double d) { return d > threshold && d <= reach; };
@@ -281,12 +283,11 @@ Scan scan(const TriMesh& mesh, const TriMesh& input, const Tree& input_tree, Tri
       }
     }
   }
-  for (std::size_t k = 0; k < bracketed.size(); ++k) {
-    const auto [d, position] = bracketed[k];
-    if (!spot(d)) continue;
-    const int owner = faces[static_cast<std::size_t>(position)].idx();
-    result.spots.emplace_back(-d, owner);
-    result.input_faces[static_cast<std::size_t>(owner)].push_back(bracketed_input[k]);
+  for (const Bracketed& b : bracketed) {
+    if (!spot(b.distance)) continue;
+    const int owner = faces[static_cast<std::size_t>(b.position)].idx();
+    result.spots.emplace_back(-b.distance, owner);
+    result.input_faces[static_cast<std::size_t>(owner)].push_back(b.input_face);
   }
   std::sort(result.spots.begin(), result.spots.end());
   return result;

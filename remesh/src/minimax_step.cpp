@@ -91,8 +91,9 @@ std::optional<std::vector<Vec3>> minimax_step(const std::vector<LinearRow>& dist
     for (const std::size_t k : active) t = std::max(t, predicted(distances[k], *d));
     violated.clear();
     for (std::size_t k = 0; k < distances.size(); ++k) {
-      const double x = in[k] ? 0 : predicted(distances[k], *d);
-      if (!in[k] && x > t) violated.emplace_back(-x, k);
+      if (in[k]) continue;
+      const double x = predicted(distances[k], *d);
+      if (x > t) violated.emplace_back(-x, k);
     }
     if (violated.empty()) return d;
     const std::size_t n = std::min(kAdded, violated.size());
