@@ -51,18 +51,20 @@ Topology topology(const TriMesh& mesh) {
   struct Counts {
     long v = 0, e = 0, f = 0, b = 0;
   };
-  // Each vertex's component as an index into `counts`, numbered in the order of first appearance.
+  // Each vertex's component as an index into `counts`. A root is the smallest index of its component (unite()), so
+  // it comes first in index order and numbers the component.
   std::vector<int> label(mesh.n_vertices(), -1);
-  std::vector<int> by_root(mesh.n_vertices(), -1);
   std::vector<Counts> counts;
   for (auto v : mesh.vertices()) {
     ++t.vertices;
-    int& c = by_root[static_cast<std::size_t>(sets.find(v.idx()))];
-    if (c < 0) {
+    const int root = sets.find(v.idx());
+    int& c = label[static_cast<std::size_t>(v.idx())];
+    if (root == v.idx()) {
       c = static_cast<int>(counts.size());
       counts.emplace_back();
+    } else {
+      c = label[static_cast<std::size_t>(root)];
     }
-    label[static_cast<std::size_t>(v.idx())] = c;
     ++counts[static_cast<std::size_t>(c)].v;
   }
   auto of = [&](TriMesh::VertexHandle v) -> Counts& {
