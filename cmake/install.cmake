@@ -21,5 +21,6 @@ function(carbonmesh_install_package)
   write_basic_package_version_file(${PROJECT_BINARY_DIR}/carbonmeshConfigVersion.cmake
     VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
   install(FILES ${PROJECT_BINARY_DIR}/carbonmeshConfig.cmake ${PROJECT_BINARY_DIR}/carbonmeshConfigVersion.cmake
+    ${PROJECT_SOURCE_DIR}/cmake/FindGLPK.cmake
     DESTINATION ${CARBONMESH_INSTALL_CMAKEDIR})
 endfunction()

@@ -19,7 +19,7 @@
 // the others are the ring's, which no move changes). Where each vertex alone is held (an edge at an end of the
 // interval, two balanced maxima), joint steps of all the region's vertices follow: the linear program of the largest
 // distance, its rows linearised at the samples and at the faces' bracketed farthest point, under linearised edge
-// lengths in [emin, emax] and a box (minimax_step.hpp, CGAL's exact solver); a step is kept if the same rules hold
+// lengths in [emin, emax] and a box (minimax_step.hpp, GLPK's simplex); a step is kept if the same rules hold
 // and the region's bracketed largest distance falls. The result is kept only if the region's largest distance fell for
 // certain: the bound over every point of its faces (branch and bound, as `carbonmesh stats --ref`) and over 153 samples
 // of each input face under it lie below the largest distance the region had (else the search may only have moved it

@@ -1,62 +1,83 @@
-// The linear program of one joint move of the minimax fit (minimax_step.hpp).
+// The linear program of one joint move of the minimax fit (minimax_step.hpp), solved with GLPK's simplex.
 #include "minimax_step.hpp"
 
-#include <CGAL/Gmpzf.h>
-#include <CGAL/QP_functions.h>
-#include <CGAL/QP_models.h>
+#include <glpk.h>
 
 #include <algorithm>
+#include <memory>
 
 namespace carbonmesh {
 
 namespace {
 
-// The linear program over the distance rows in `active` and every length row.
-std::optional<std::vector<Vec3>> solve(const std::vector<LinearRow>& distances, const std::vector<std::size_t>& active,
-                                       const std::vector<LinearRow>& lengths, double lower, double upper,
-                                       std::size_t vertices, double radius) {
-  // Variables: d (3 a vertex), then t. Rows: value + g.d - t <= 0; lower <= value + g.d <= upper.
-  const int t = static_cast<int>(3 * vertices);
-  CGAL::Quadratic_program<double> program(CGAL::SMALLER, true, -radius, true, radius);
-  program.set_l(t, false);
-  program.set_u(t, false);
-  program.set_c(t, 1);
-  int row = 0;
-  std::vector<Vec3> sum(vertices);
-  std::vector<char> used(vertices);
-  auto add_terms = [&](const LinearRow& r) {  // (a vertex may have several terms: the solver keeps the last set)
-    std::fill(sum.begin(), sum.end(), Vec3(0, 0, 0));
-    std::fill(used.begin(), used.end(), 0);
-    for (const auto& [v, g] : r.terms) {
-      sum[v] += g;
-      used[v] = 1;
-    }
-    for (std::size_t v = 0; v < vertices; ++v)
-      if (used[v])
-        for (int c = 0; c < 3; ++c)
-          if (sum[v][c] != 0) program.set_a(static_cast<int>(3 * v) + c, row, sum[v][c]);
-  };
-  for (const std::size_t k : active) {
-    add_terms(distances[k]);
-    program.set_a(t, row, -1);
-    program.set_b(row, -distances[k].value);
-    ++row;
-  }
-  for (const LinearRow& r : lengths)
-    for (const auto& [relation, bound] : {std::pair{CGAL::SMALLER, upper}, std::pair{CGAL::LARGER, lower}}) {
-      add_terms(r);
-      program.set_r(row, relation);
-      program.set_b(row, bound - r.value);
-      ++row;
-    }
-  const auto solution = CGAL::solve_linear_program(program, CGAL::Gmpzf());
-  if (!solution.is_optimal()) return std::nullopt;
-  std::vector<Vec3> d(vertices, Vec3(0, 0, 0));
-  auto value = solution.variable_values_begin();
-  for (std::size_t v = 0; v < vertices; ++v)
-    for (int c = 0; c < 3; ++c, ++value) d[v][c] = CGAL::to_double(*value);
-  return d;
+using Program = std::unique_ptr<glp_prob, decltype(&glp_delete_prob)>;
+
+// The program's variables: d (3 a vertex, columns 1..3n), then t (column 3n + 1), minimised.
+Program make_program(std::size_t vertices, double radius) {
+  Program lp(glp_create_prob(), &glp_delete_prob);
+  glp_set_obj_dir(lp.get(), GLP_MIN);
+  const int t = static_cast<int>(3 * vertices) + 1;
+  glp_add_cols(lp.get(), t);
+  for (int j = 1; j < t; ++j) glp_set_col_bnds(lp.get(), j, GLP_DB, -radius, radius);
+  glp_set_col_bnds(lp.get(), t, GLP_FR, 0, 0);
+  glp_set_obj_coef(lp.get(), t, 1);
+  return lp;
 }
+
+// Rows value + g.d - t <= 0 (a distance) or lower <= value + g.d <= upper (a length); a vertex's terms are summed.
+class RowWriter {
+ public:
+  explicit RowWriter(std::size_t vertices) : sum_(vertices, Vec3(0, 0, 0)), used_(vertices, 0) {
+    index_.reserve(3 * vertices + 2);
+    value_.reserve(3 * vertices + 2);
+  }
+
+  void distance(glp_prob* lp, const LinearRow& r) {
+    gather(r);
+    index_.push_back(static_cast<int>(3 * sum_.size()) + 1);
+    value_.push_back(-1);
+    write(lp, GLP_UP, 0, -r.value);
+  }
+
+  void length(glp_prob* lp, const LinearRow& r, double lower, double upper) {
+    gather(r);
+    write(lp, GLP_DB, lower - r.value, upper - r.value);
+  }
+
+ private:
+  void gather(const LinearRow& r) {
+    index_.assign(1, 0);  // GLPK reads from position 1
+    value_.assign(1, 0);
+    for (const auto& [v, g] : r.terms) {
+      if (!used_[v]) touched_.push_back(v);
+      sum_[v] += g;
+      used_[v] = 1;
+    }
+    std::sort(touched_.begin(), touched_.end());
+    for (const std::size_t v : touched_) {
+      for (int c = 0; c < 3; ++c)
+        if (sum_[v][c] != 0) {
+          index_.push_back(static_cast<int>(3 * v) + c + 1);
+          value_.push_back(sum_[v][c]);
+        }
+      sum_[v] = Vec3(0, 0, 0);
+      used_[v] = 0;
+    }
+    touched_.clear();
+  }
+
+  void write(glp_prob* lp, int type, double lb, double ub) {
+    const int row = glp_add_rows(lp, 1);
+    glp_set_mat_row(lp, row, static_cast<int>(index_.size()) - 1, index_.data(), value_.data());
+    glp_set_row_bnds(lp, row, type, lb, ub);
+  }
+
+  std::vector<Vec3> sum_;
+  std::vector<char> used_;
+  std::vector<std::size_t> touched_;
+  std::vector<int> index_;
+  std::vector<double> value_;
+};
 
 double predicted(const LinearRow& r, const std::vector<Vec3>& d) {
   double x = r.value;
@@ -71,28 +92,39 @@ std::optional<std::vector<Vec3>> minimax_step(const std::vector<LinearRow>& dist
                                               std::size_t vertices, double radius) {
   if (distances.empty() || vertices == 0) return std::nullopt;
   // Cutting planes: the rows near the largest first, then, while the solution's prediction puts rows above its
-  // largest, the kAdded most violated of them (the result is that of the whole program; most rows never bind).
+  // largest, the kAdded most violated of them, added to the same program and solved again from the last basis (the
+  // result is that of the whole program; most rows never bind).
   constexpr double kNear = 0.1;       // of the radius
   constexpr std::size_t kAdded = 16;  // rows a round at most
   double largest = 0;
   for (const LinearRow& r : distances) largest = std::max(largest, r.value);
+  const Program lp = make_program(vertices, radius);
+  RowWriter writer(vertices);
+  for (const LinearRow& r : lengths) writer.length(lp.get(), r, lower, upper);
   std::vector<std::size_t> active;
   std::vector<char> in(distances.size(), 0);
   for (std::size_t k = 0; k < distances.size(); ++k)
     if (distances[k].value >= largest - kNear * radius) {
       active.push_back(k);
       in[k] = 1;
+      writer.distance(lp.get(), distances[k]);
     }
+  glp_smcp parameters;
+  glp_init_smcp(&parameters);
+  parameters.msg_lev = GLP_MSG_OFF;
+  parameters.meth = GLP_DUALP;  // after added rows the last basis stays dual feasible
+  std::vector<Vec3> d(vertices);
   std::vector<std::pair<double, std::size_t>> violated;
   for (;;) {
-    auto d = solve(distances, active, lengths, lower, upper, vertices, radius);
-    if (!d) return d;
+    if (glp_simplex(lp.get(), &parameters) != 0 || glp_get_status(lp.get()) != GLP_OPT) return std::nullopt;
+    for (std::size_t v = 0; v < vertices; ++v)
+      for (int c = 0; c < 3; ++c) d[v][c] = glp_get_col_prim(lp.get(), static_cast<int>(3 * v) + c + 1);
     double t = 0;
-    for (const std::size_t k : active) t = std::max(t, predicted(distances[k], *d));
+    for (const std::size_t k : active) t = std::max(t, predicted(distances[k], d));
     violated.clear();
     for (std::size_t k = 0; k < distances.size(); ++k) {
       if (in[k]) continue;
-      const double x = predicted(distances[k], *d);
+      const double x = predicted(distances[k], d);
       if (x > t) violated.emplace_back(-x, k);
     }
     if (violated.empty()) return d;
@@ -101,6 +133,7 @@ std::optional<std::vector<Vec3>> minimax_step(const std::vector<LinearRow>& dist
     for (std::size_t i = 0; i < n; ++i) {
       active.push_back(violated[i].second);
       in[violated[i].second] = 1;
+      writer.distance(lp.get(), distances[violated[i].second]);
     }
   }
 }

@@ -1,7 +1,8 @@
 #pragma once
 // One linearised step of a minimax problem over vertex displacements: the largest of a few distances, each linear in
 // the displacements near where it was measured, made least subject to linearised edge lengths and a box trust
-// region (a linear program, solved exactly by CGAL's QP solver). The minimax fit's joint moves. Internal.
+// region (a linear program, solved by GLPK's simplex in floating point: the minimax fit checks every step it keeps
+// against the true lengths and distances). The minimax fit's joint moves. Internal.
 #include <cstddef>
 #include <optional>
 #include <utility>
