@@ -529,6 +529,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
       result.minimax_max_before = minimax.max_before;
       result.minimax_max_after = minimax.max_after;
       result.minimax_moves = minimax.moves;
+      result.minimax_wide_moves = minimax.wide_moves;
       step_end(took.minimax_fit);
       spdlog::debug("minimax fit: largest sampled distance {:.4f} -> {:.4f}, {} moves at {} spots, {:.3f}s "
                     "(scans {:.3f}s)", minimax.max_before, minimax.max_after, minimax.moves, minimax.spots,
@@ -638,6 +639,7 @@ nlohmann::json to_json(const RemeshResult& r) {
           {"minimax_max_before", r.minimax_max_before},
           {"minimax_max_after", r.minimax_max_after},
           {"minimax_moves", r.minimax_moves},
+          {"minimax_wide_moves", r.minimax_wide_moves},
           {"snapped", r.snapped},
           {"snapped_vertices", r.snapped_vertices},
           {"inserted_vertices", r.inserted_vertices},

@@ -189,8 +189,12 @@ void add_remesh_command(CLI::App& app, Action& action) {
           std::cout << fmt::format("surface fit: RMS distance to the input {:.4f} -> {:.4f}\n", result.fit_rms_before,
                                    result.fit_rms_after);
         if (result.minimax_fitted)
-          std::cout << fmt::format("minimax fit: largest sampled distance to the input {:.4f} -> {:.4f} ({} moves)\n",
-                                   result.minimax_max_before, result.minimax_max_after, result.minimax_moves);
+          std::cout << fmt::format("minimax fit: largest sampled distance to the input {:.4f} -> {:.4f} ({} moves{})\n",
+                                   result.minimax_max_before, result.minimax_max_after, result.minimax_moves,
+                                   result.minimax_wide_moves == 0
+                                       ? std::string()
+                                       : fmt::format(", {} in the farthest region's wider search",
+                                                     result.minimax_wide_moves));
       }
       if (!result.converged)
         spdlog::warn("{} long and {} short edges remain outside [{}, {}]", result.long_edges, result.short_edges,

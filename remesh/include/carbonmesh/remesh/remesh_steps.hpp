@@ -402,6 +402,7 @@ struct MinimaxFitResult {
   double max_before = 0, max_after = 0;  // the largest sampled distance between the surfaces, before and after
   std::size_t spots = 0;                 // regions searched
   std::size_t moves = 0;                 // vertex moves kept
+  std::size_t wide_moves = 0;            // of those, in the farthest region's second search (its ring movable too)
   double scan_seconds = 0;               // of the time taken, the scans of both surfaces
 };
 

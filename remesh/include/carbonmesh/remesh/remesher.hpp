@@ -143,6 +143,7 @@ struct RemeshResult {
   bool minimax_fitted = false;  // minimax_fit ran (settings.minimax_fit)
   double minimax_max_before = 0, minimax_max_after = 0;  // the largest sampled distance, before and after
   std::size_t minimax_moves = 0;                         // vertex moves it kept
+  std::size_t minimax_wide_moves = 0;  // of those, in the farthest region's second search (its ring movable too)
   bool snapped = false;              // snap_to_features ran (settings.snap_features)
   std::size_t snapped_vertices = 0;  // vertices it moved onto the input's features
   std::size_t inserted_vertices = 0;  // vertices it added at input vertices no move reached (a split face each)
