@@ -26,6 +26,22 @@ std::filesystem::path seed_model(const std::string& name) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared model not found: " << (path).string()          \
                                                    << " (set CARBONMESH_SHARED_DIR at configure time)"
 
+// `input` turned and shifted as tools/bench/remesh_motions.py moves it (its products summed in its order, so the
+// coordinates are those of the file it writes).
+void move_rigidly(TriMesh& input, const double (&rotation)[3][3], const double (&shift)[3]) {
+  for (auto v : input.vertices()) {
+    const Vec3 p = input.point(v);
+    Vec3 q;
+    for (int i = 0; i < 3; ++i) {
+      double x = rotation[i][0] * p[0];
+      x += rotation[i][1] * p[1];
+      x += rotation[i][2] * p[2];
+      q[i] = x + shift[i];
+    }
+    input.set_point(v, q);
+  }
+}
+
 TEST(SeedProtocol, FertilityEndsWithEveryEdgeInsideItsGenusAndTheIssuesRegularityAndDistances) {
   const auto path = seed_model("fertility");
   SKIP_WITHOUT(path);
@@ -51,11 +67,10 @@ TEST(SeedProtocol, FertilityEndsWithEveryEdgeInsideItsGenusAndTheIssuesRegularit
   EXPECT_LE(distance.max_bound, 0.5);
 }
 
-// The same surface in other coordinates meets the same bound: armadillo turned and shifted by the first rigid motion
-// of tools/bench/remesh_motions.py (seed 1; the products summed in its order, so the coordinates are those of the
-// file it writes). A face across a saddle, with edges 1.798 and 1.202 long and a corner the snap put on an input
-// vertex, stayed 0.5497 from the input (bound 0.5498) until the face caps (cap_far_faces) gave it a vertex of its own:
-// 0.4637 (since the trees' closest point of session 44: 0.4673, and 0.5519 without the face caps).
+// The same surface in other coordinates meets the same bound: armadillo turned and shifted by the first rigid motion of
+// tools/bench/remesh_motions.py (seed 1). A face across a saddle, with edges 1.798 and 1.202 long and a corner the snap
+// put on an input vertex, stayed 0.5497 from the input (bound 0.5498) until the face caps (cap_far_faces) gave it a
+// vertex of its own: 0.4637 (since the trees' closest point of session 44: 0.4673, and 0.5519 without the face caps).
 TEST(SeedProtocol, ArmadilloUnderARigidMotionStaysWithinHalfAnEdgeOfItsInput) {
   const auto path = seed_model("armadillo");
   SKIP_WITHOUT(path);
@@ -64,17 +79,7 @@ TEST(SeedProtocol, ArmadilloUnderARigidMotionStaysWithinHalfAnEdgeOfItsInput) {
                                      {0.5222405777845536, -0.43875591731767305, -0.7312715117751978}};
   constexpr double shift[3] = {-4.898619485211566, -0.09129825816118142, -1.010178704225238};
   TriMesh input = load_mesh(path);
-  for (auto v : input.vertices()) {
-    const Vec3 p = input.point(v);
-    Vec3 q;
-    for (int i = 0; i < 3; ++i) {
-      double x = rotation[i][0] * p[0];
-      x += rotation[i][1] * p[1];
-      x += rotation[i][2] * p[2];
-      q[i] = x + shift[i];
-    }
-    input.set_point(v, q);
-  }
+  move_rigidly(input, rotation, shift);
   TriMesh mesh = input;
   const RemeshResult result = remesh(mesh, RemeshSettings{});
   const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});
@@ -86,10 +91,9 @@ TEST(SeedProtocol, ArmadilloUnderARigidMotionStaysWithinHalfAnEdgeOfItsInput) {
   EXPECT_LE(distance.max_bound, 0.5) << "capped faces: " << result.capped_faces;
 }
 
-// Bunny turned and shifted by the 14th rigid motion of tools/bench/remesh_motions.py (seed 14, its products summed in
-// its order): the region the minimax fit leaves farthest (0.5312 from the input) has its vertices held by edges at
-// the ends of the interval; its second search, with the neighbours of those vertices movable too, brings it to
-// 0.4927.
+// Bunny turned and shifted by the 14th rigid motion of tools/bench/remesh_motions.py (seed 14): the region the minimax
+// fit leaves farthest (0.5312 from the input) has its vertices held by edges at the ends of the interval; its second
+// search, with the neighbours of those vertices movable too, brings it to 0.4927.
 TEST(SeedProtocol, BunnyUnderARigidMotionStaysWithinHalfAnEdgeThroughTheWiderMinimaxSearch) {
   const auto path = seed_model("bunny");
   SKIP_WITHOUT(path);
@@ -98,17 +102,7 @@ TEST(SeedProtocol, BunnyUnderARigidMotionStaysWithinHalfAnEdgeThroughTheWiderMin
                                      {0.3775045992379523, 0.4890348479310238, -0.7863429245966891}};
   constexpr double shift[3] = {8.807047791322358, -4.577695468793537, -4.884489731339217};
   TriMesh input = load_mesh(path);
-  for (auto v : input.vertices()) {
-    const Vec3 p = input.point(v);
-    Vec3 q;
-    for (int i = 0; i < 3; ++i) {
-      double x = rotation[i][0] * p[0];
-      x += rotation[i][1] * p[1];
-      x += rotation[i][2] * p[2];
-      q[i] = x + shift[i];
-    }
-    input.set_point(v, q);
-  }
+  move_rigidly(input, rotation, shift);
   TriMesh mesh = input;
   const RemeshResult result = remesh(mesh, RemeshSettings{});
   const EdgeStats edges = edge_stats(mesh, {1.2, 1.8});

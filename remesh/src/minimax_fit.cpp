@@ -353,7 +353,6 @@ class Region {
   // faces and the check's samples; without a kept move, the distance it had).
   std::size_t optimize(TriMesh::FaceHandle spot, bool wide, double& largest) {
     largest = 0;
-    wide_ = wide;
     collect(spot, wide);
     if (movable_.empty()) return 0;
     std::vector<Vec3> start_positions;
@@ -816,7 +815,6 @@ class Region {
   double level_ = 0;  // the excess level of this region's search
   int grid_ = kGrid;  // and its samples a face (the grid's step is 1 / grid_)
   std::vector<TriMesh::VertexHandle> movable_;
-  bool wide_ = false;  // the second search of the farthest region
   std::vector<TriMesh::FaceHandle> faces_, ring_;
   std::vector<std::vector<int>> at_vertex_;
   std::vector<int> inputs_;
