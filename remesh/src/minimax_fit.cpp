@@ -665,8 +665,6 @@ class Region {
     return out;
   }
 
-  // The largest distance over `grid` samples of the region's faces to the input and over the input samples to
-  // the region (or its ring).
   // The region's largest distance: over every point of its faces to the input (bracketed: attained and bound), and
   // over the input samples to the region (or its ring).
   std::pair<double, double> largest_distance(const Samples& samples) const {
