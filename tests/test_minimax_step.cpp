@@ -2,6 +2,7 @@
 // linearised distance made least within the box and the length bounds, on small programs whose optimum is known or can
 // be bracketed by trying every point of a grid over the box.
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -71,6 +72,16 @@ TEST(MinimaxStep, RefusesALengthTheBoxCannotBringInside) {
   const std::vector<LinearRow> lengths{row(2.0, {{0, Vec3(1, 0, 0)}})};
   EXPECT_FALSE(minimax_step(distances, lengths, 1.2, 1.8, 1, 0.1).has_value());
   EXPECT_TRUE(minimax_step(distances, lengths, 1.2, 1.8, 1, 0.25).has_value());
+}
+
+TEST(MinimaxStep, RefusesARowThatIsNotFinite) {
+  // A degenerate face's gradient (NaN) or an infinite distance: no step, rather than a program GLPK solves as given.
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<LinearRow> good{row(0.5, {{0, Vec3(0, 0, 1)}})};
+  EXPECT_TRUE(minimax_step(good, {}, 1.2, 1.8, 1, 0.1).has_value());
+  EXPECT_FALSE(minimax_step({row(0.5, {{0, Vec3(0, nan, 1)}})}, {}, 1.2, 1.8, 1, 0.1).has_value());
+  EXPECT_FALSE(minimax_step({row(inf, {{0, Vec3(0, 0, 1)}})}, {}, 1.2, 1.8, 1, 0.1).has_value());
+  EXPECT_FALSE(minimax_step(good, {row(1.5, {{0, Vec3(nan, 0, 0)}})}, 1.2, 1.8, 1, 0.1).has_value());
 }
 
 TEST(MinimaxStep, NoPointOfTheBoxHasASmallerLargestDistance) {

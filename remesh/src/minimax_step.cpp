@@ -4,6 +4,7 @@
 #include <glpk.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace carbonmesh {
@@ -93,6 +94,16 @@ class RowWriter {
   std::vector<double> value_;
 };
 
+bool finite(const std::vector<LinearRow>& rows) {
+  for (const LinearRow& r : rows) {
+    if (!std::isfinite(r.value)) return false;
+    for (const auto& term : r.terms)
+      for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(term.second[c])) return false;
+  }
+  return true;
+}
+
 double predicted(const LinearRow& r, const std::vector<Vec3>& d) {
   double x = r.value;
   for (const auto& [v, g] : r.terms) x += OpenMesh::dot(g, d[v]);
@@ -104,7 +115,8 @@ double predicted(const LinearRow& r, const std::vector<Vec3>& d) {
 std::optional<std::vector<Vec3>> minimax_step(const std::vector<LinearRow>& distances,
                                               const std::vector<LinearRow>& lengths, double lower, double upper,
                                               std::size_t vertices, double radius) {
-  if (distances.empty() || vertices == 0) return std::nullopt;
+  if (distances.empty() || vertices == 0 || !std::isfinite(radius) || !finite(distances) || !finite(lengths))
+    return std::nullopt;  // (GLPK takes a row with a NaN or an infinity as given)
   // Cutting planes: the rows near the largest first, then, while the solution's prediction puts rows above its
   // largest, the kAdded most violated of them, added to the same program and solved again from the last basis (the
   // result is that of the whole program; most rows never bind).
