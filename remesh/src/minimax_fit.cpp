@@ -27,7 +27,7 @@
 // once every earlier spot near it has finished (OrderedSchedule): the output does not depend on the thread count.
 // Then the region left farthest, if still farther than the tolerance, is searched once more (on one thread) with the
 // neighbours of its vertices movable too: where its own vertices are held by edges at the ends of the interval, the
-// ring around can make room (on bunny's 24 rigid motions of tools/bench/remesh_motions.py, motion 14 0.5312 -> 0.4927).
+// ring around can make room (on bunny's 24 rigid motions of tools/bench/remesh_motions.py, motion 14 0.5312 -> 0.4924).
 #include <algorithm>
 #include <array>
 #include <chrono>

@@ -127,11 +127,9 @@ std::optional<std::vector<Vec3>> minimax_step(const std::vector<LinearRow>& dist
   const Program lp = make_program(vertices, radius);
   RowWriter writer(vertices);
   for (const LinearRow& r : lengths) writer.length(lp.get(), r, lower, upper);
-  std::vector<std::size_t> active;
-  std::vector<char> in(distances.size(), 0);
+  std::vector<char> in(distances.size(), 0);  // the rows in the program
   for (std::size_t k = 0; k < distances.size(); ++k)
     if (distances[k].value >= largest - kNear * radius) {
-      active.push_back(k);
       in[k] = 1;
       writer.distance(lp.get(), distances[k]);
     }
@@ -149,7 +147,8 @@ std::optional<std::vector<Vec3>> minimax_step(const std::vector<LinearRow>& dist
         d[v][c] = glp_get_col_prim(lp.get(), p) - glp_get_col_prim(lp.get(), p + 1);
       }
     double t = 0;
-    for (const std::size_t k : active) t = std::max(t, predicted(distances[k], d));
+    for (std::size_t k = 0; k < distances.size(); ++k)
+      if (in[k]) t = std::max(t, predicted(distances[k], d));
     violated.clear();
     for (std::size_t k = 0; k < distances.size(); ++k) {
       if (in[k]) continue;
@@ -160,7 +159,6 @@ std::optional<std::vector<Vec3>> minimax_step(const std::vector<LinearRow>& dist
     const std::size_t n = std::min(kAdded, violated.size());
     std::partial_sort(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(n), violated.end());
     for (std::size_t i = 0; i < n; ++i) {
-      active.push_back(violated[i].second);
       in[violated[i].second] = 1;
       writer.distance(lp.get(), distances[violated[i].second]);
     }
