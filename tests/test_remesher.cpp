@@ -926,7 +926,8 @@ TEST(MinimaxFit, ScanSeesACreaseAlongAnInputEdge) {
 // A part of the input cut off: a flat patch of equilateral triangles (every edge 1.5, inside [1.2, 1.8]) under an
 // input that is the same patch with its middle vertex raised 5 (a spike farther than an edge). The spike's lower
 // samples lie within reach (its face centroids 1.67 from the patch), so the spots beside its base are searched, but
-// their regions hold the spike's tip: they are left, as the spots farther than an edge are. (Until session 55 the
+// their regions hold the spike's tip, farther than any move within the interval could bring within an edge
+// (1.8 + sqrt(1.8^2 - 1.2^2) = 3.14): they are left, as the spots farther than an edge are. (Until session 55 the
 // search pulled the middle of the patch up toward the tip, which mends nothing: camelhead's slit, 3.2-7.7 deep,
 // took 0.4 s of such moves.)
 TEST(MinimaxFit, LeavesARegionThatHoldsAPartCutOff) {

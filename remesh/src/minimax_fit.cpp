@@ -9,7 +9,7 @@
 // the spots' threshold are bracketed (their farthest point, by branch and bound: a face's farthest point lies at a
 // sample only by chance); spots farther than `tolerance` and than `share` of the largest distance are taken farthest
 // first (those farther than an edge are left: a part of the input was cut off there, which small moves do not mend;
-// so is a spot whose region holds such a part, its largest distance before the search farther than an edge).
+// so is a spot whose region's largest distance no search can bring within an edge, see out_of_reach()).
 // Around each spot, the corners of its face and the far corners of its three neighbours move
 // one at a time, along their normal and two tangents, in a pattern search (the step halved when no move gains) over the
 // region: the faces at those vertices. A move is kept if every edge at the vertex stays in [emin, emax], no face at it
@@ -69,6 +69,11 @@ constexpr int kCuts = 3;
 // At most this many spots a round: the farthest set the largest distance, and a search costs 10-100 ms (a 20:1 disc,
 // its whole rim between 0.8 emax and emax from the input, had 61: 3.3 s for a maximum of 2.71 -> 2.61).
 constexpr std::size_t kMaxSpots = 16;
+
+// A move keeps every edge at the vertex within [emin, emax], so it lifts the vertex off the plane of its neighbours by
+// sqrt(emax^2 - emin^2) at most: a region farther than emax plus that from the input stays farther than an edge
+// (a part cut off) whatever the search does (camelhead at twice its size: a region at 1.8343 came to 1.6162).
+double out_of_reach(double emin, double emax) { return emax + std::sqrt(emax * emax - emin * emin); }
 
 void dense_samples(const Vec3& a, const Vec3& b, const Vec3& c, int grid, std::vector<Vec3>& out) {
   for (int i = 0; i <= grid; ++i)
@@ -361,9 +366,9 @@ class Region {
     const Samples check = input_samples(kCheck);
     const double checked_before = largest_distance(check).first;
     largest = checked_before;
-    // A region farther than an edge from the input holds a part of it that was cut off (a spot within reach can lie
-    // beside one: camelhead's slit, 3.2-7.7 from its lid): left, as the spots farther than an edge are.
-    if (checked_before > emax_) return 0;
+    // A region that no search can bring within an edge of the input holds a part of it that was cut off (a spot within
+    // reach can lie beside one: camelhead's slit, 3.2-7.7 from its lid): left, as the spots farther than an edge are.
+    if (checked_before > out_of_reach(emin_, emax_)) return 0;
     // The search sees `grid_` samples a face; its result is kept only if the largest distance over the check's
     // finer samples fell too. Else the search may have only moved the largest distance between its samples: it
     // runs again from the start with twice the samples, while fewer than the check's.
@@ -885,9 +890,9 @@ MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin,
     // The region left farthest, if still farther than the tolerance, once more with its vertices' neighbours movable
     // too (where its own vertices are held by edges at the ends of the interval, the ring around can make room).
     if (!spots.empty()) {
-      std::size_t worst = spots.size();  // the farthest within reach (the others are left, see Region::optimize)
+      std::size_t worst = spots.size();  // the farthest of those searched (see Region::optimize)
       for (std::size_t k = 0; k < spots.size(); ++k)
-        if (largest[k] <= emax && (worst == spots.size() || largest[k] > largest[worst])) worst = k;
+        if (largest[k] <= out_of_reach(emin, emax) && (worst == spots.size() || largest[k] > largest[worst])) worst = k;
       if (worst < spots.size() && largest[worst] > settings.tolerance) {
         double after = 0;
         const auto t0 = std::chrono::steady_clock::now();

@@ -407,9 +407,10 @@ struct MinimaxFitResult {
 };
 
 // Moves the vertices around the spots where the remeshed surface and `surface` are farthest apart (either way,
-// sampled; spots farther than emax, and spots whose region holds a distance over emax, are left) so that the
-// largest distance over each spot's region falls; edges inside [emin, emax] before stay inside. Border vertices, and
-// those with (*fixed)[index] != 0, stay where they are.
+// sampled; spots farther than emax are left, and spots whose region is farther than emax + sqrt(emax^2 - emin^2),
+// which no move within the interval brings within emax) so that the largest distance over each spot's region falls;
+// edges inside [emin, emax] before stay inside. Border vertices, and those with (*fixed)[index] != 0, stay where they
+// are.
 // The output does not depend on the thread count.
 MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin, double emax,
                              const MinimaxFitSettings& settings = {}, const std::vector<char>* fixed = nullptr,
