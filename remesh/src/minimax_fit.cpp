@@ -70,9 +70,10 @@ constexpr int kCuts = 3;
 // its whole rim between 0.8 emax and emax from the input, had 61: 3.3 s for a maximum of 2.71 -> 2.61).
 constexpr std::size_t kMaxSpots = 16;
 
-// A move keeps every edge at the vertex within [emin, emax], so it lifts the vertex off the plane of its neighbours by
-// sqrt(emax^2 - emin^2) at most: a region farther than emax plus that from the input stays farther than an edge
-// (a part cut off) whatever the search does (camelhead at twice its size: a region at 1.8343 came to 1.6162).
+// A move keeps every edge at the vertex within [emin, emax], so on a flat star it lifts the vertex off the plane of
+// its neighbours by sqrt(emax^2 - emin^2) at most: a region farther than emax plus that from the input stays farther
+// than an edge (a part cut off) whatever the search does (camelhead at twice its size: a region at 1.8343 came to
+// 1.6162).
 double out_of_reach(double emin, double emax) { return emax + std::sqrt(emax * emax - emin * emin); }
 
 void dense_samples(const Vec3& a, const Vec3& b, const Vec3& c, int grid, std::vector<Vec3>& out) {
