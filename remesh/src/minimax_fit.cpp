@@ -891,9 +891,10 @@ MinimaxFitResult minimax_fit(TriMesh& mesh, const TriMesh& surface, double emin,
     // The region left farthest, if still farther than the tolerance, once more with its vertices' neighbours movable
     // too (where its own vertices are held by edges at the ends of the interval, the ring around can make room).
     if (!spots.empty()) {
-      std::size_t worst = spots.size();  // the farthest of those searched (see Region::optimize)
+      const double searched = out_of_reach(emin, emax);  // farther regions were left (Region::optimize)
+      std::size_t worst = spots.size();                    // the farthest of those searched
       for (std::size_t k = 0; k < spots.size(); ++k)
-        if (largest[k] <= out_of_reach(emin, emax) && (worst == spots.size() || largest[k] > largest[worst])) worst = k;
+        if (largest[k] <= searched && (worst == spots.size() || largest[k] > largest[worst])) worst = k;
       if (worst < spots.size() && largest[worst] > settings.tolerance) {
         double after = 0;
         const auto t0 = std::chrono::steady_clock::now();
