@@ -362,14 +362,14 @@ class Region {
     largest = 0;
     collect(spot, wide);
     if (movable_.empty()) return 0;
-    std::vector<Vec3> start_positions;
-    for (auto v : movable_) start_positions.push_back(mesh_.point(v));
     const Samples check = input_samples(kCheck);
     const double checked_before = largest_distance(check).first;
     largest = checked_before;
     // A region that no search can bring within an edge of the input holds a part of it that was cut off (a spot within
     // reach can lie beside one: camelhead's slit, 3.2-7.7 from its lid): left, as the spots farther than an edge are.
     if (checked_before > out_of_reach(emin_, emax_)) return 0;
+    std::vector<Vec3> start_positions;
+    for (auto v : movable_) start_positions.push_back(mesh_.point(v));
     // The search sees `grid_` samples a face; its result is kept only if the largest distance over the check's
     // finer samples fell too. Else the search may have only moved the largest distance between its samples: it
     // runs again from the start with twice the samples, while fewer than the check's.
