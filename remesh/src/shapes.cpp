@@ -4,6 +4,9 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
 
@@ -195,7 +198,10 @@ TriMesh make_icosphere(const SphereShape& shape) {
   require_positive(shape.radius, "sphere radius");
   if (shape.subdivisions < 0 || shape.subdivisions > 9)
     throw InputError("shape: sphere subdivisions must be between 0 and 9");
-  auto [points, faces] = icosahedron();
+  // (Not a structured binding: the lambda below captures `points`, which clang before 16 refuses for a binding.)
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> faces;
+  std::tie(points, faces) = icosahedron();
   for (int s = 0; s < shape.subdivisions; ++s) {
     std::map<std::pair<int, int>, int> midpoint;
     auto mid = [&](int a, int b) {
