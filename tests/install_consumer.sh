@@ -12,12 +12,10 @@ extra=()
 if grep -q '^CARBONMESH_SANITIZE:BOOL=ON' "$build_dir/CMakeCache.txt"; then
   extra=(-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined)
 fi
-# The consumer is built with the build's own compilers: the static libraries call their OpenMP runtime (GCC's
+# The consumer is built with the build's own compiler: the static libraries call its OpenMP runtime (GCC's
 # libgomp, or LLVM's libomp for a clang build), which another compiler's -fopenmp does not link.
-for lang in C CXX; do
-  compiler=$(sed -n "s/^CMAKE_${lang}_COMPILER:[A-Z]*=//p" "$build_dir/CMakeCache.txt")
-  if [ -n "$compiler" ]; then extra+=("-DCMAKE_${lang}_COMPILER=$compiler"); fi
-done
+compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build_dir/CMakeCache.txt")
+if [ -n "$compiler" ]; then extra+=("-DCMAKE_CXX_COMPILER=$compiler"); fi
 cmake -S "$source_dir/consumer" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release \
   "${extra[@]}" > "$work/configure.log"
 cmake --build "$work/build" -j 2 > "$work/build.log"
