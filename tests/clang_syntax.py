@@ -6,8 +6,8 @@ broke the remesh library under clang from afd47f9 to a9ac065, seen only by `make
 project with clang into a temporary directory, takes each compile command of its compile_commands.json and runs it
 with -fsyntax-only (parsing, templates instantiated, diagnostics; no code generated), on every core.
 
-Usage: clang_syntax.py SOURCE_DIR [PART] (PART: check only the files whose path contains it). Exit 0 when all compile without a warning, 1 otherwise, 77 (skipped) without
-clang++.
+Usage: clang_syntax.py SOURCE_DIR [PART] (PART: check only the files whose path contains it). Exit 0 when all
+compile without a warning, 1 otherwise, 77 (skipped) without clang.
 """
 import concurrent.futures
 import json
@@ -40,8 +40,7 @@ def check(entry):
 
 def main():
     source = os.path.abspath(sys.argv[1])
-    clang = shutil.which("clang++")
-    if clang is None or shutil.which("clang") is None:
+    if shutil.which("clang++") is None or shutil.which("clang") is None:
         print("SKIP: clang++ is not installed (scripts/bootstrap installs it)")
         return 77
     with tempfile.TemporaryDirectory(prefix="carbonmesh-clang-") as work:
