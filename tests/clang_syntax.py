@@ -41,7 +41,7 @@ def check(entry):
 def main():
     source = os.path.abspath(sys.argv[1])
     if shutil.which("clang++") is None or shutil.which("clang") is None:
-        print("SKIP: clang++ is not installed (scripts/bootstrap installs it)")
+        print("SKIP: clang or clang++ is not installed (scripts/bootstrap installs them)")
         return 77
     with tempfile.TemporaryDirectory(prefix="carbonmesh-clang-") as work:
         env = dict(os.environ, CC="clang", CXX="clang++")
