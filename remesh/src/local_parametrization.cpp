@@ -8,6 +8,7 @@
 #include <Eigen/SparseLU>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "small_lu.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -256,9 +257,21 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
   int count = 0;
   for (std::size_t i = 0; i < n; ++i)
     if (next_on_border[i] < 0) unknown[i] = count++;
+  // The system: up to SmallLU::kMax unknowns (kl = 2) straight into a SmallLU, else as triplets and a right side.
+  const bool small = count <= SmallLU::kMax;
+  thread_local SmallLU lu;
   thread_local std::vector<Eigen::Triplet<double>> triplets;
-  triplets.clear();
-  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(count, 2);
+  Eigen::MatrixX2d rhs;
+  if (small) {
+    lu.reset(count);
+  } else {
+    triplets.clear();
+    rhs = Eigen::MatrixX2d::Zero(count, 2);
+  }
+  auto add = [&](int row, int col, double value) {
+    if (small) lu.a[row][col] += value;
+    else triplets.emplace_back(row, col, value);
+  };
   thread_local std::vector<Vec3> ring;
   thread_local std::vector<int> ring_local;
   thread_local std::vector<double> lambda;
@@ -294,20 +307,31 @@ bool compute_parametrization(const TriMesh& mesh, const KStar& star, Parametriza
       weight = lambda.data();
     }
     const int row = unknown[i];
-    triplets.emplace_back(row, row, 1.0);
+    add(row, row, 1.0);
     for (std::size_t j = 0; j < ring_local.size(); ++j) {
       if (!std::isfinite(weight[j])) return false;
       const int col = unknown[static_cast<std::size_t>(ring_local[j])];
-      if (col >= 0)
-        triplets.emplace_back(row, col, -weight[j]);
-      else
-        rhs.row(row) += weight[j] * uv[static_cast<std::size_t>(ring_local[j])].transpose();
+      if (col >= 0) {
+        add(row, col, -weight[j]);
+      } else {
+        const Eigen::Vector2d& u = uv[static_cast<std::size_t>(ring_local[j])];
+        if (small) lu.b[row][0] += weight[j] * u.x(), lu.b[row][1] += weight[j] * u.y();
+        else rhs.row(row) += weight[j] * u.transpose();
+      }
     }
   }
   Eigen::MatrixX2d x;
+  if (small) {  // Eigen's dense LU below, with the same arithmetic (small_lu.hpp)
+    lu.solve(count);
+    for (int i = 0; i < count; ++i)
+      if (!std::isfinite(lu.b[i][0]) || !std::isfinite(lu.b[i][1])) return false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (unknown[i] >= 0) uv[i] = Eigen::Vector2d(lu.b[unknown[i]][0], lu.b[unknown[i]][1]);
+    return true;
+  }
   if (count <= kDenseLimit) {
-    // Small stars (kl <= 2): profiling showed SparseLU's symbolic analysis and allocations dominating the
-    // whole filter, so the same system is solved densely, in fixed-capacity (stack) matrices.
+    // Medium stars (kl = 3): profiling showed SparseLU's symbolic analysis and allocations dominating the whole
+    // filter, so the same system is solved densely, in fixed-capacity (stack) matrices.
     using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kDenseLimit, kDenseLimit>;
     using Rhs = Eigen::Matrix<double, Eigen::Dynamic, 2, 0, kDenseLimit, 2>;
     Dense a = Dense::Zero(count, count);
