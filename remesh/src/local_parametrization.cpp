@@ -101,14 +101,16 @@ RingWeights ring_weights(const TriMesh& mesh, ParametrizationWeights weights) {
   RingWeights r;
   r.begin.assign(n + 1, 0);
   r.valid.assign(n, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const TriMesh::VertexHandle v(static_cast<int>(i));
+  const int count = static_cast<int>(n);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < count; ++i) {  // each vertex's count, then their sums
+    const TriMesh::VertexHandle v(i);
     const bool use = !mesh.status(v).deleted() && !mesh.is_isolated(v) && !mesh.is_boundary(v);
-    r.begin[i + 1] = r.begin[i] + (use ? static_cast<int>(mesh.valence(v)) : 0);
+    r.begin[static_cast<std::size_t>(i) + 1] = use ? static_cast<int>(mesh.valence(v)) : 0;
   }
+  for (std::size_t i = 0; i < n; ++i) r.begin[i + 1] += r.begin[i];
   r.ring.resize(static_cast<std::size_t>(r.begin[n]));
   r.lambda.resize(r.ring.size());
-  const int count = static_cast<int>(n);
 #pragma omp parallel
   {
     std::vector<Vec3> ring;
