@@ -511,7 +511,9 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
     // The vertices the snap put on features stay there in the fit and the minimax fit.
     const std::vector<char>* snapped = snap.fixed.empty() ? nullptr : &snap.fixed;
     if (s.fit_surface) {
-      const SurfaceFitResult fit = fit_to_surface(mesh, surface, s.emin, s.emax, {}, snapped, tree);
+      SurfaceFitSettings fit_settings;
+      fit_settings.measure_input_after = spdlog::should_log(spdlog::level::debug);  // (the debug line's figure only)
+      const SurfaceFitResult fit = fit_to_surface(mesh, surface, s.emin, s.emax, fit_settings, snapped, tree);
       result.fitted = true;
       result.fit_rms_before = fit.rms_before;
       result.fit_rms_after = fit.rms_after;

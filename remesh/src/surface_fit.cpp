@@ -569,7 +569,7 @@ SurfaceFitResult fit_to_surface(TriMesh& mesh, const TriMesh& surface, double em
   result.limited = keep_interval(mesh, start, moves, emin, emax);
   const Faces faces = faces_of(mesh);
   result.rms_after = mesh_rms(faces, input.tree(), hints);
-  result.input_rms_after = weighted_rms(input_samples(faces, points, backward));
+  if (settings.measure_input_after) result.input_rms_after = weighted_rms(input_samples(faces, points, backward));
   return result;
 }
 
