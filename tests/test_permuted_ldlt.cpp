@@ -1,5 +1,6 @@
 // PermutedLDLT (remesh/src/permuted_ldlt.hpp) against Eigen's SimplicialLDLT on the damped normal equations of a
-// mesh-like pattern: the same solution bit for bit, for several damping factors on one analysis.
+// mesh-like pattern: the same solution bit for bit, for several damping factors on one analysis, and the same
+// verdict on a zero pivot.
 #include <cstring>
 #include <random>
 #include <vector>
@@ -79,6 +80,27 @@ TEST(PermutedLDLT, SolvesBitForBitAsEigensSimplicialLDLT) {
       EXPECT_LT((h.selfadjointView<Eigen::Lower>() * x - b).norm(), 1e-9 * (1 + b.norm()));
     }
   }
+}
+
+// A zero pivot fails in both, and a factorization after the failed one is again Eigen's bit for bit.
+TEST(PermutedLDLT, ReportsAZeroPivotAsEigenDoesAndRecovers) {
+  std::mt19937 rng(11);
+  const Matrix jtj = grid_normal_matrix(4, rng);
+  Matrix zero = jtj;
+  for (Eigen::Index k = 0; k < zero.nonZeros(); ++k) zero.valuePtr()[k] = 0.0;
+  PermutedLDLT permuted;
+  permuted.analyze(jtj);
+  Eigen::SimplicialLDLT<Matrix> eigen;
+  eigen.compute(zero);
+  EXPECT_NE(eigen.info(), Eigen::Success);
+  EXPECT_FALSE(permuted.factorize(zero, 0.0, 0.0));
+  ASSERT_TRUE(permuted.factorize(jtj, 0.0, 0.0));
+  eigen.compute(jtj);
+  ASSERT_EQ(eigen.info(), Eigen::Success);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(jtj.rows(), -1.0, 1.0);
+  Eigen::VectorXd x;
+  permuted.solve(b, x);
+  EXPECT_TRUE(same_bits(x, eigen.solve(b)));
 }
 
 }  // namespace
