@@ -11,6 +11,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "dense_llt.hpp"
 #include "permuted_ldlt.hpp"
 #include "remesh_geometry.hpp"
 
@@ -203,7 +204,6 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   // and a sparse LDL^T analysed once (PermutedLDLT: Eigen's fill-reducing permutation applied once per region).
   const bool dense = dim <= kDenseUnknowns;
   Eigen::MatrixXd jtj_dense, h_dense;
-  Eigen::LLT<Eigen::MatrixXd> llt_dense;
   Eigen::SparseMatrix<double> jtj;
   PermutedLDLT ldlt;
   std::vector<double*> entry, diag_entry;
@@ -273,9 +273,10 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       if (dense) {
         h_dense = jtj_dense;
         for (int i = 0; i < dim; ++i) h_dense(i, i) += mu * (diag[i] + diag_floor);
-        llt_dense.compute(h_dense);  // positive definite: the damping adds mu times a positive floor
-        if (llt_dense.info() != Eigen::Success) break;
-        step = -llt_dense.solve(jtr);
+        // (positive definite: the damping adds mu times a positive floor; Eigen's LLT arithmetic, dense_llt.hpp)
+        if (!llt_in_place(h_dense)) break;
+        llt_solve(h_dense, jtr, step);
+        step = -step;
       } else {
         if (!ldlt.factorize(jtj, mu, diag_floor)) break;
         ldlt.solve(jtr, step);
