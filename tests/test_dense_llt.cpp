@@ -1,6 +1,7 @@
 // llt_in_place() and llt_solve() (remesh/src/dense_llt.hpp) against Eigen's LLT<MatrixXd>: the same factor and the
 // same solution bit for bit on damped normal equations of 1 to 48 unknowns, and the same verdict where a pivot is
 // not positive.
+#include <cmath>
 #include <cstring>
 #include <random>
 
@@ -17,13 +18,14 @@ bool same_bits(const double* a, const double* b, Eigen::Index n) {
   return std::memcmp(a, b, sizeof(double) * static_cast<std::size_t>(n)) == 0;
 }
 
-// J^T J of random terms joining 2x2 blocks (as the nonlinear optimizer's), damped as it damps, and its right side.
+// J^T J of random terms joining 2x2 blocks (as the nonlinear optimizer's), damped as it damps.
 Eigen::MatrixXd damped_normal_matrix(int n, std::mt19937& rng) {
   std::uniform_real_distribution<double> g(-1.0, 1.0);
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
   const int blocks = (n + 1) / 2;
   for (int t = 0; t < 3 * blocks; ++t) {
-    const int p = static_cast<int>(rng() % static_cast<unsigned>(blocks)), q = static_cast<int>(rng() % static_cast<unsigned>(blocks));
+    const auto pick = [&] { return static_cast<int>(rng() % static_cast<unsigned>(blocks)); };
+    const int p = pick(), q = pick();
     Eigen::VectorXd row = Eigen::VectorXd::Zero(n);
     for (int k : {2 * p, 2 * p + 1, 2 * q, 2 * q + 1})
       if (k < n) row[k] = g(rng);

@@ -60,9 +60,8 @@ class PermutedLDLT {
     }
     // SimplicialCholeskyBase::factorize_preordered<true> with its patterns known (its shift: scale 1, offset 0).
     const std::size_t n = d_.size();
-    y_.assign(n, 0.0);
+    y_.assign(n, 0.0);  // (each row leaves the entries it used at zero; a failed factorization may not)
     for (std::size_t k = 0; k < n; ++k) {
-      y_[k] = 0.0;
       for (int s = scatter_begin_[k]; s < scatter_begin_[k + 1]; ++s)
         y_[static_cast<std::size_t>(scatter_row_[static_cast<std::size_t>(s)])] +=
             values_[static_cast<std::size_t>(scatter_entry_[static_cast<std::size_t>(s)])];
@@ -117,7 +116,6 @@ class PermutedLDLT {
     const auto un = static_cast<std::size_t>(n);
     std::vector<int> parent(un, -1), count(un, 0), tags(un, -1);
     for (int k = 0; k < n; ++k) {
-      parent[static_cast<std::size_t>(k)] = -1;
       tags[static_cast<std::size_t>(k)] = k;
       for (Matrix::InnerIterator it(ap, k); it; ++it) {
         int i = static_cast<int>(it.index());
