@@ -2,21 +2,18 @@
 // same solution bit for bit on damped normal equations of 1 to 48 unknowns, and the same verdict where a pivot is
 // not positive.
 #include <cmath>
-#include <cstring>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "dense_llt.hpp"
+#include "test_same_bits.hpp"
 
 namespace {
 
 using carbonmesh::llt_in_place;
 using carbonmesh::llt_solve;
-
-bool same_bits(const double* a, const double* b, Eigen::Index n) {
-  return std::memcmp(a, b, sizeof(double) * static_cast<std::size_t>(n)) == 0;
-}
+using carbonmesh::testing::same_bits;
 
 // J^T J of random terms joining 2x2 blocks (as the nonlinear optimizer's), damped as it damps.
 Eigen::MatrixXd damped_normal_matrix(int n, std::mt19937& rng) {
@@ -51,11 +48,11 @@ TEST(DenseLLT, FactorsAndSolvesBitForBitAsEigensLLT) {
       ASSERT_TRUE(llt_in_place(l)) << "n " << n;
       const Eigen::MatrixXd expected_l = eigen.matrixL();
       const Eigen::MatrixXd got_l = l.triangularView<Eigen::Lower>();
-      EXPECT_TRUE(same_bits(got_l.data(), expected_l.data(), got_l.size())) << "n " << n << " trial " << trial;
+      EXPECT_TRUE(same_bits(got_l, expected_l)) << "n " << n << " trial " << trial;
       const Eigen::VectorXd expected = eigen.solve(b);
       Eigen::VectorXd x;
       llt_solve(l, b, x);
-      EXPECT_TRUE(same_bits(x.data(), expected.data(), n)) << "n " << n << " trial " << trial;
+      EXPECT_TRUE(same_bits(x, expected)) << "n " << n << " trial " << trial;
       ++compared;
     }
   EXPECT_EQ(compared, 48 * 12);

@@ -1,17 +1,18 @@
 // PermutedLDLT (remesh/src/permuted_ldlt.hpp) against Eigen's SimplicialLDLT on the damped normal equations of a
 // mesh-like pattern: the same solution bit for bit, for several damping factors on one analysis, and the same
 // verdict on a zero pivot.
-#include <cstring>
 #include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "permuted_ldlt.hpp"
+#include "test_same_bits.hpp"
 
 namespace {
 
 using carbonmesh::PermutedLDLT;
+using carbonmesh::testing::same_bits;
 using Matrix = Eigen::SparseMatrix<double>;
 
 // J^T J of random "edge" terms between 2x2 blocks of a grid of n x n nodes (each node joined to its right, upper
@@ -41,11 +42,6 @@ Matrix grid_normal_matrix(int n, std::mt19937& rng) {
   m.setFromTriplets(t.begin(), t.end());
   m.makeCompressed();
   return m;
-}
-
-bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const std::size_t bytes = sizeof(double) * static_cast<std::size_t>(a.size());
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), bytes) == 0;
 }
 
 TEST(PermutedLDLT, SolvesBitForBitAsEigensSimplicialLDLT) {

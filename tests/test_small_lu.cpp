@@ -1,17 +1,18 @@
 // SmallLU (remesh/src/small_lu.hpp) against Eigen's PartialPivLU on the dynamic fixed-capacity matrices the Floater
 // parametrization used before: the same solution bit for bit, on Floater-like systems (unit diagonal, negative
 // convex weights) and on general ones that need row swaps, for every size up to SmallLU::kMax.
-#include <cstring>
 #include <random>
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "small_lu.hpp"
+#include "test_same_bits.hpp"
 
 namespace {
 
 using carbonmesh::SmallLU;
+using carbonmesh::testing::same_bits;
 using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 40, 40>;
 using Rhs = Eigen::Matrix<double, Eigen::Dynamic, 2, 0, 40, 2>;
 
@@ -32,8 +33,8 @@ Rhs small_lu_solution(const Dense& a, const Rhs& b) {
 
 // Solves a x = b both ways; true if the solutions have the same bits.
 bool same_solution(const Dense& a, const Rhs& b) {
-  const Rhs eigen = Eigen::PartialPivLU<Dense>(a).solve(b), small = small_lu_solution(a, b);
-  return std::memcmp(small.data(), eigen.data(), sizeof(double) * static_cast<std::size_t>(2 * a.rows())) == 0;
+  const Rhs eigen = Eigen::PartialPivLU<Dense>(a).solve(b);
+  return same_bits(small_lu_solution(a, b), eigen);
 }
 
 TEST(SmallLU, SolvesBitForBitAsEigensPartialPivLU) {
