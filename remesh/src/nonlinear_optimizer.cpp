@@ -202,6 +202,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   // J^T J is sparse (2x2 blocks of the variables an edge joins). A small region (the usual kn-star: about 24
   // unknowns) is solved dense; a large one keeps its pattern once, each term with pointers to its entries,
   // and a sparse LDL^T analysed once (PermutedLDLT: Eigen's fill-reducing permutation applied once per region).
+  // Both keep the lower triangle only (row >= column), the part their factorizations read.
   const bool dense = dim <= kDenseUnknowns;
   Eigen::MatrixXd jtj_dense, h_dense;
   Eigen::SparseMatrix<double> jtj;
@@ -209,6 +210,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   std::vector<double*> entry, diag_entry;
   if (dense) {
     jtj_dense.resize(dim, dim);
+    h_dense.resize(dim, dim);
   } else {
     std::vector<Eigen::Triplet<double>> pattern;
     for (int i = 0; i < dim; ++i) pattern.emplace_back(i, i, 0.0);
@@ -216,17 +218,19 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       int idx[4];
       const int c = term_indices(t, idx);
       for (int p = 0; p < c; ++p)
-        for (int q = 0; q < c; ++q) pattern.emplace_back(idx[p], idx[q], 0.0);
+        for (int q = 0; q < c; ++q)
+          if (idx[q] <= idx[p]) pattern.emplace_back(idx[p], idx[q], 0.0);
     }
     jtj.resize(dim, dim);
     jtj.setFromTriplets(pattern.begin(), pattern.end());
     jtj.makeCompressed();
-    entry.resize(16 * terms.size());
+    entry.assign(16 * terms.size(), nullptr);
     for (std::size_t k = 0; k < terms.size(); ++k) {
       int idx[4];
       const int c = term_indices(terms[k], idx);
       for (int p = 0; p < c; ++p)
-        for (int q = 0; q < c; ++q) entry[16 * k + static_cast<std::size_t>(4 * p + q)] = &jtj.coeffRef(idx[p], idx[q]);
+        for (int q = 0; q < c; ++q)
+          if (idx[q] <= idx[p]) entry[16 * k + static_cast<std::size_t>(4 * p + q)] = &jtj.coeffRef(idx[p], idx[q]);
     }
     diag_entry.resize(static_cast<std::size_t>(dim));
     for (int i = 0; i < dim; ++i) diag_entry[static_cast<std::size_t>(i)] = &jtj.coeffRef(i, i);
@@ -234,7 +238,8 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   }
   Eigen::VectorXd jtr(dim), step(dim);
   for (int it = 0; it < 20 && current > 0; ++it) {
-    if (dense) jtj_dense.setZero();
+    if (dense)
+      for (int j = 0; j < dim; ++j) jtj_dense.col(j).tail(dim - j).setZero();
     else std::fill(jtj.valuePtr(), jtj.valuePtr() + jtj.nonZeros(), 0.0);
     jtr.setZero();
     for (int i = 0; i < nv; ++i)
@@ -261,9 +266,13 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       for (int p = 0; p < c; ++p) {
         jtr[idx[p]] += wr * g[p];
         if (dense)
-          for (int q = 0; q < c; ++q) jtj_dense(idx[p], idx[q]) += wj * g[p] * g[q];
+          for (int q = 0; q < c; ++q) {
+            if (idx[q] <= idx[p]) jtj_dense(idx[p], idx[q]) += wj * g[p] * g[q];
+          }
         else
-          for (int q = 0; q < c; ++q) *entry[16 * k + static_cast<std::size_t>(4 * p + q)] += wj * g[p] * g[q];
+          for (int q = 0; q < c; ++q) {
+            if (idx[q] <= idx[p]) *entry[16 * k + static_cast<std::size_t>(4 * p + q)] += wj * g[p] * g[q];
+          }
       }
     }
     bool improved = false;
@@ -271,7 +280,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     for (int tries = 0; tries < 8 && !improved; ++tries) {
       // The damped system: J^T J + mu (diag(J^T J) + a tiny floor).
       if (dense) {
-        h_dense = jtj_dense;
+        h_dense.triangularView<Eigen::Lower>() = jtj_dense;
         for (int i = 0; i < dim; ++i) h_dense(i, i) += mu * (diag[i] + diag_floor);
         // (positive definite: the damping adds mu times a positive floor; Eigen's LLT arithmetic, dense_llt.hpp)
         if (!llt_in_place(h_dense)) break;
