@@ -202,7 +202,8 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   // J^T J is sparse (2x2 blocks of the variables an edge joins). A small region (the usual kn-star: about 24
   // unknowns) is solved dense; a large one keeps its pattern once, each term with pointers to its entries,
   // and a sparse LDL^T analysed once (PermutedLDLT: Eigen's fill-reducing permutation applied once per region).
-  // Both keep the lower triangle only (row >= column), the part their factorizations read.
+  // Both keep the lower triangle only, the part their factorizations read.
+  auto lower = [](int row, int column) { return column <= row; };
   const bool dense = dim <= kDenseUnknowns;
   Eigen::MatrixXd jtj_dense, h_dense;
   Eigen::SparseMatrix<double> jtj;
@@ -219,7 +220,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       const int c = term_indices(t, idx);
       for (int p = 0; p < c; ++p)
         for (int q = 0; q < c; ++q)
-          if (idx[q] <= idx[p]) pattern.emplace_back(idx[p], idx[q], 0.0);
+          if (lower(idx[p], idx[q])) pattern.emplace_back(idx[p], idx[q], 0.0);
     }
     jtj.resize(dim, dim);
     jtj.setFromTriplets(pattern.begin(), pattern.end());
@@ -230,7 +231,8 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
       const int c = term_indices(terms[k], idx);
       for (int p = 0; p < c; ++p)
         for (int q = 0; q < c; ++q)
-          if (idx[q] <= idx[p]) entry[16 * k + static_cast<std::size_t>(4 * p + q)] = &jtj.coeffRef(idx[p], idx[q]);
+          if (lower(idx[p], idx[q]))
+            entry[16 * k + static_cast<std::size_t>(4 * p + q)] = &jtj.coeffRef(idx[p], idx[q]);
     }
     diag_entry.resize(static_cast<std::size_t>(dim));
     for (int i = 0; i < dim; ++i) diag_entry[static_cast<std::size_t>(i)] = &jtj.coeffRef(i, i);
@@ -267,11 +269,11 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
         jtr[idx[p]] += wr * g[p];
         if (dense)
           for (int q = 0; q < c; ++q) {
-            if (idx[q] <= idx[p]) jtj_dense(idx[p], idx[q]) += wj * g[p] * g[q];
+            if (lower(idx[p], idx[q])) jtj_dense(idx[p], idx[q]) += wj * g[p] * g[q];
           }
         else
           for (int q = 0; q < c; ++q) {
-            if (idx[q] <= idx[p]) *entry[16 * k + static_cast<std::size_t>(4 * p + q)] += wj * g[p] * g[q];
+            if (lower(idx[p], idx[q])) *entry[16 * k + static_cast<std::size_t>(4 * p + q)] += wj * g[p] * g[q];
           }
       }
     }
