@@ -8,7 +8,6 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "dense_llt.hpp"
