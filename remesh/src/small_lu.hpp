@@ -25,7 +25,13 @@ struct SmallLU {
   }
 
   // Factorizes a and overwrites b with the solution. The results equal Eigen's bit for bit (the tests compare).
-  void solve(int n) {
+  // Each n has its own copy of the arithmetic, with n known to the compiler: the same operations in the same order,
+  // with less loop control (bunny's low-pass filter solves, one thread: 0.43 -> 0.32 G instructions).
+  void solve(int n) { solve_from<1>(n); }
+
+ private:
+  template <int n>
+  void solve_fixed() {
     int transposition[kMax];
     // Eigen's partial_lu_impl::unblocked_lu: the first largest pivot of the column, the whole rows swapped, the
     // column below divided by it (a division each, as Eigen's), and the rank-one update.
@@ -77,7 +83,13 @@ struct SmallLU {
     }
   }
 
- private:
+  // solve_fixed<n>() for the n given, 1 <= n <= kMax.
+  template <int m>
+  void solve_from(int n) {
+    if (n == m) solve_fixed<m>();
+    else if constexpr (m < kMax) solve_from<m + 1>(n);
+  }
+
   // Eigen's SmallPanelWidth: the larger of its kernel's register block sizes (4 for doubles with SSE2).
   static constexpr int kPanel = std::max<int>(Eigen::internal::gebp_traits<double, double>::mr,
                                               Eigen::internal::gebp_traits<double, double>::nr);
