@@ -53,7 +53,7 @@ struct ValenceTable {
     for (int i = 0; i < n; ++i) {
       const TriMesh::VertexHandle v(i);
       if (mesh.status(v).deleted()) continue;
-      valence[static_cast<std::size_t>(i)] = static_cast<int>(mesh.valence(v));
+      valence[static_cast<std::size_t>(i)] = geometry::valence(mesh, v);
       ideal[static_cast<std::size_t>(i)] = ideal_valence(mesh, v);
     }
   }
@@ -70,7 +70,7 @@ int valence_improvement(const TriMesh& mesh, TriMesh::EdgeHandle e) {
   const FlipQuad q = quad(mesh, e);
   // improvement() read from the mesh (no tables of every vertex: the feature snap calls this per flip it considers)
   auto off = [&](TriMesh::VertexHandle v, int change) {
-    return sq(ideal_valence(mesh, v) - (static_cast<int>(mesh.valence(v)) + change));
+    return sq(ideal_valence(mesh, v) - (geometry::valence(mesh, v) + change));
   };
   return off(q.a, 0) + off(q.b, 0) + off(q.c, 0) + off(q.d, 0) -
          (off(q.a, -1) + off(q.b, -1) + off(q.c, 1) + off(q.d, 1));

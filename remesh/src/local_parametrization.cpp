@@ -8,6 +8,7 @@
 #include <Eigen/SparseLU>
 
 #include "carbonmesh/remesh/remesh_steps.hpp"
+#include "remesh_geometry.hpp"
 #include "small_lu.hpp"
 
 namespace carbonmesh {
@@ -106,7 +107,7 @@ RingWeights ring_weights(const TriMesh& mesh, ParametrizationWeights weights) {
   for (int i = 0; i < count; ++i) {  // each vertex's count, then their sums
     const TriMesh::VertexHandle v(i);
     const bool use = !mesh.status(v).deleted() && !mesh.is_isolated(v) && !mesh.is_boundary(v);
-    r.begin[static_cast<std::size_t>(i) + 1] = use ? static_cast<int>(mesh.valence(v)) : 0;
+    r.begin[static_cast<std::size_t>(i) + 1] = use ? geometry::valence(mesh, v) : 0;
   }
   for (std::size_t i = 0; i < n; ++i) r.begin[i + 1] += r.begin[i];
   r.ring.resize(static_cast<std::size_t>(r.begin[n]));
@@ -143,23 +144,6 @@ RingWeights ring_weights(const TriMesh& mesh, ParametrizationWeights weights) {
 StarScratch::StarScratch(const TriMesh& mesh)
     : vertex_mark(mesh.n_vertices(), 0), face_mark(mesh.n_faces(), 0), local(mesh.n_vertices(), -1) {}
 
-namespace {
-
-// The outgoing half-edges of `v` in the order of OpenMesh's vv_range / vf_range (clockwise from
-// halfedge_handle(v)), by direct navigation: the circulators' lap bookkeeping cost more than the k-star itself.
-template <class Visit>
-void for_each_outgoing(const TriMesh& mesh, TriMesh::VertexHandle v, Visit&& visit) {
-  const auto first = mesh.halfedge_handle(v);
-  if (!first.is_valid()) return;
-  auto h = first;
-  do {
-    visit(h);
-    h = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h));
-  } while (h != first);
-}
-
-}  // namespace
-
 void collect_k_star(const TriMesh& mesh, TriMesh::VertexHandle v, int k, KStar& star, StarScratch& s) {
   ++s.stamp;
   star.vertices.clear();
@@ -176,7 +160,7 @@ void collect_k_star(const TriMesh& mesh, TriMesh::VertexHandle v, int k, KStar& 
   for (int r = 1; r <= k; ++r) {
     const std::size_t end = star.vertices.size();
     for (std::size_t i = begin; i < end; ++i)
-      for_each_outgoing(mesh, star.vertices[i], [&](TriMesh::HalfedgeHandle h) {
+      geometry::for_each_outgoing(mesh, star.vertices[i], [&](TriMesh::HalfedgeHandle h) {
         const auto w = mesh.to_vertex_handle(h);
         if (s.vertex_mark[static_cast<std::size_t>(w.idx())] != s.stamp) visit(w, r);
       });
@@ -184,7 +168,7 @@ void collect_k_star(const TriMesh& mesh, TriMesh::VertexHandle v, int k, KStar& 
   }
   for (std::size_t i = 0; i < star.vertices.size(); ++i) {
     if (star.ring[i] >= k) break;  // rings are appended in order
-    for_each_outgoing(mesh, star.vertices[i], [&](TriMesh::HalfedgeHandle h) {
+    geometry::for_each_outgoing(mesh, star.vertices[i], [&](TriMesh::HalfedgeHandle h) {
       const auto f = mesh.face_handle(h);
       if (!f.is_valid()) return;
       auto& mark = s.face_mark[static_cast<std::size_t>(f.idx())];

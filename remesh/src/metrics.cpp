@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "per_element.hpp"
+#include "remesh_geometry.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -140,7 +141,7 @@ ValenceStats valence_stats(const TriMesh& mesh) {
   const std::vector<Vertex> vertices = per_element(mesh.n_vertices(), [&](int i) {
     const TriMesh::VertexHandle v(i);
     if (mesh.status(v).deleted()) return Vertex{};
-    return Vertex{static_cast<int>(mesh.valence(v)), ideal_valence(mesh, v), mesh.is_boundary(v)};
+    return Vertex{geometry::valence(mesh, v), ideal_valence(mesh, v), mesh.is_boundary(v)};
   });
   std::vector<std::size_t> interior, boundary;  // counts by valence
   std::size_t n = 0, regular = 0, eval0 = 0, eval1 = 0, eval_gt1 = 0;
