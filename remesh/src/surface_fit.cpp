@@ -449,11 +449,11 @@ int settle_edges(TriMesh& mesh, const std::vector<Vec3>& start, double emin, dou
   // Edges to look at in this sweep (a min-heap of indices: ends moved by an earlier edge of this sweep add later
   // ones) and in the next (ends moved at or after their place in this sweep).
   std::vector<int> now, next;
-  std::vector<char> in_now(mesh.n_edges(), 0), in_next(mesh.n_edges(), 0);
+  std::vector<char> in_now(mesh.n_edges(), 1), in_next(mesh.n_edges(), 0);  // (deleted edges are never listed)
   for (auto e : mesh.edges())
     if (!mesh.status(e).deleted()) now.push_back(e.idx());  // (in order: a heap already)
   auto moved = [&](TriMesh::VertexHandle v, int position) {
-    for (auto h : mesh.voh_range(v)) {
+    geometry::for_each_outgoing(mesh, v, [&](TriMesh::HalfedgeHandle h) {
       const int f = mesh.edge_handle(h).idx();
       const auto uf = static_cast<std::size_t>(f);
       if (f > position) {
@@ -461,9 +461,8 @@ int settle_edges(TriMesh& mesh, const std::vector<Vec3>& start, double emin, dou
       } else if (!in_next[uf]) {
         in_next[uf] = 1, next.push_back(f);
       }
-    }
+    });
   };
-  std::fill(in_now.begin(), in_now.end(), 1);
   int sweep = 0;
   for (; sweep < sweeps; ++sweep) {
     bool any = false;
