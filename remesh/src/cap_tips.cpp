@@ -90,7 +90,7 @@ std::pair<std::size_t, std::size_t> flaws_everywhere(const TriMesh& mesh, double
   const std::size_t outside = edges.long_edges + edges.short_edges;
   std::size_t off = 0;
   for (auto v : mesh.vertices())
-    if (!mesh.is_isolated(v)) off += std::abs(static_cast<int>(mesh.valence(v)) - ideal_valence(mesh, v)) > 1 ? 1 : 0;
+    if (!mesh.is_isolated(v)) off += std::abs(geometry::valence(mesh, v) - ideal_valence(mesh, v)) > 1 ? 1 : 0;
   return {outside, off};
 }
 
@@ -181,7 +181,7 @@ class TipCapper {
     }
     local_.collect(m, tip, rings, region_);
     for (auto w : region_)
-      if (std::abs(static_cast<int>(m.valence(w)) - ideal_valence(m, w)) > 1) {
+      if (std::abs(geometry::valence(m, w) - ideal_valence(m, w)) > 1) {
         note("{}: {} rings, a valence off the ideal by more than one", label_, rings);
         return Outcome::kRefused;
       }

@@ -44,7 +44,7 @@ bool geometry_ok(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 bool flip_valence_ok(const TriMesh& mesh, const FlipQuad& q) {
   int before = 0, after = 0;
   for (const auto& [v, change] : {std::pair{q.a, -1}, std::pair{q.b, -1}, std::pair{q.c, 1}, std::pair{q.d, 1}}) {
-    const int off = static_cast<int>(mesh.valence(v)) - ideal_valence(mesh, v);
+    const int off = geometry::valence(mesh, v) - ideal_valence(mesh, v);
     const int off_after = off + change;
     if (std::abs(off_after) > std::max(1, std::abs(off))) return false;  // (so no valence under 3 either)
     before += off * off;

@@ -20,7 +20,7 @@ std::size_t remove_valence_defects(TriMesh& mesh, const ProjectionTarget& target
                                    double emax) {
   std::vector<TriMesh::VertexHandle> defects;
   for (auto v : mesh.vertices())
-    if (!mesh.is_boundary(v) && ideal_valence(mesh, v) - static_cast<int>(mesh.valence(v)) >= 2) defects.push_back(v);
+    if (!mesh.is_boundary(v) && ideal_valence(mesh, v) - geometry::valence(mesh, v) >= 2) defects.push_back(v);
   std::size_t removed = 0;
   std::vector<std::pair<TriMesh::VertexHandle, Vec3>> moved, saved;
   std::vector<Vec3> neighbors;

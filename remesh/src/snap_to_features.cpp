@@ -372,8 +372,8 @@ struct Worker {
     }
     bool valences = true;
     for (auto w : mesh.vv_range(nv))
-      valences = valences && std::abs(static_cast<int>(mesh.valence(w)) - ideal_valence(mesh, w)) <= 1;
-    valences = valences && std::abs(static_cast<int>(mesh.valence(nv)) - ideal_valence(mesh, nv)) <= 1;
+      valences = valences && std::abs(geometry::valence(mesh, w) - ideal_valence(mesh, w)) <= 1;
+    valences = valences && std::abs(geometry::valence(mesh, nv) - ideal_valence(mesh, nv)) <= 1;
     remeasure = true;  // the faces changed by more than their corners' moves: every watched point measured again
     bool kept = valences && try_snap(s, nv, q, flaws_before, distance);
     remeasure = false;

@@ -47,7 +47,8 @@ bool link_condition(const TriMesh& mesh, HH h) {
     if (adjacent(mesh, w, v1)) return false;
   }
   // A tetrahedron passes the link condition but collapses into a doubled triangle.
-  if (vl.is_valid() && vr.is_valid() && mesh.valence(v0) == 3 && mesh.valence(v1) == 3 && adjacent(mesh, vl, vr))
+  if (vl.is_valid() && vr.is_valid() && geometry::valence(mesh, v0) == 3 && geometry::valence(mesh, v1) == 3 &&
+      adjacent(mesh, vl, vr))
     return false;
   return true;
 }
