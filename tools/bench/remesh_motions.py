@@ -102,7 +102,7 @@ def main():
 def table(cli, peer, args, models, work):
     """The section's lines; the moved inputs and the remeshes are written to `work`."""
     seeds = list(range(args.motions + 1))
-    lines = ["## Remeshing: the same protocol on rigid motions of the models", "",
+    lines = [f"## Remeshing: the same protocol on rigid motions of the models ({args.motions} motions each)", "",
              f"Machine: {machine_line()}. Each seed-protocol model as given and moved by {args.motions} random rigid "
              f"motions (a rotation uniform over all rotations and a shift of up to {SHIFT:g} per axis, seeds 1 to "
              f"{args.motions}: the same surface in other coordinates), remeshed by the protocol and the CGAL peer of "
