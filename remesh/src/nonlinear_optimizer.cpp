@@ -82,6 +82,26 @@ void collect_edge_star(const TriMesh& mesh, TriMesh::EdgeHandle e, int k, EdgeSt
   }
 }
 
+// Per-face stamps of optimize_region's fold check: the faces checked, and those whose normal at the trial
+// displacement is held, in the current attempt.
+struct FaceMarks {
+  std::vector<unsigned> checked_stamp, normal_stamp;
+  std::vector<Vec3> normal;
+  unsigned stamp = 0;
+  void fit(std::size_t faces) {
+    if (checked_stamp.size() >= faces) return;
+    checked_stamp.resize(faces, 0);
+    normal_stamp.resize(faces, 0);
+    normal.resize(faces);
+  }
+  void next() {
+    if (++stamp != 0) return;
+    std::fill(checked_stamp.begin(), checked_stamp.end(), 0u);  // wrapped: start over
+    std::fill(normal_stamp.begin(), normal_stamp.end(), 0u);
+    stamp = 1;
+  }
+};
+
 // p_j = n_l + n_s: troubling edges of the kn-star of the edge (edges at a vertex of star number < kn).
 int priority(const TriMesh& mesh, const EdgeStar& star, int kn, const std::vector<char>& is_troubling, Marks& marks) {
   int count = 0;
@@ -329,18 +349,33 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     int c = 0;
     for (auto w : mesh.fv_range(f)) q[c++] = point_of(x, var_index(w), w);
   };
+  // Within an attempt a face is checked once (it is reached from each of its moving corners, and the check depends
+  // on x only), and each face's normal at x is computed once (it is also read by its neighbours' checks).
+  thread_local FaceMarks faces;
+  faces.fit(mesh.n_faces());
   auto moved_normal = [&](TriMesh::FaceHandle f) {
-    Vec3 q[3];
-    moved_corners(f, q);
-    return geometry::triangle_normal(q[0], q[1], q[2]);
+    const auto i = static_cast<std::size_t>(f.idx());
+    if (faces.normal_stamp[i] != faces.stamp) {
+      Vec3 q[3];
+      moved_corners(f, q);
+      faces.normal[i] = geometry::triangle_normal(q[0], q[1], q[2]);
+      faces.normal_stamp[i] = faces.stamp;
+    }
+    return faces.normal[i];
   };
   for (int attempt = 0; attempt < 5; ++attempt, x *= 0.5) {
     bool ok = true;
+    faces.next();
     for (int i = 0; i < nv && ok; ++i) {
       for (auto f : mesh.vf_range(variables[static_cast<std::size_t>(i)])) {
+        auto& checked = faces.checked_stamp[static_cast<std::size_t>(f.idx())];
+        if (checked == faces.stamp) continue;
+        checked = faces.stamp;
         Vec3 q[3];
         moved_corners(f, q);
         const Vec3 before = geometry::face_normal(mesh, f), after = geometry::triangle_normal(q[0], q[1], q[2]);
+        faces.normal[static_cast<std::size_t>(f.idx())] = after;
+        faces.normal_stamp[static_cast<std::size_t>(f.idx())] = faces.stamp;
         ok = OpenMesh::dot(before, after) >= kMaxNormalTurnCos && geometry::min_angle(q[0], q[1], q[2]) >= kMinAngle;
         for (auto h : mesh.fh_range(f)) {
           const auto g = mesh.opposite_face_handle(h);
