@@ -132,13 +132,21 @@ inline void closest_points_from_hints(const Tree& tree, const Point* queries, Tr
 }
 
 // The largest distance to the tree's surface of seven points of the triangle a, b, c: its centroid, its edge
-// midpoints and the points a third of the way from the centroid to each corner.
+// midpoints and the points a third of the way from the centroid to each corner. Each point's search starts from
+// the closest point of the one before (the first from the tree's own hint): the nearest distance is the same
+// from any start, and the points are close together.
 inline double face_distance(const Tree& tree, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 g = (a + b + c) / 3.0;
   double worst = 0;
+  Point closest;
+  bool first = true;
   for (const Vec3& p : {g, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (2.0 * g + a) / 3.0, (2.0 * g + b) / 3.0,
-                        (2.0 * g + c) / 3.0})
-    worst = std::max(worst, tree.squared_distance(to_point(p)));
+                        (2.0 * g + c) / 3.0}) {
+    const Point q = to_point(p);
+    closest = first ? tree.closest_point(q) : tree.closest_point(q, closest);
+    first = false;
+    worst = std::max(worst, Traits().squared_distance_object()(q, closest));  // (as Tree::squared_distance)
+  }
   return std::sqrt(worst);
 }
 
