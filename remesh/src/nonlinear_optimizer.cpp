@@ -55,8 +55,17 @@ struct EdgeStar {
 struct Marks {
   std::vector<int> vertex, edge, local;
   int stamp = 0;
+  // optimize_region's fold check, per attempt (face_stamp): the faces checked, and those whose normal at the trial
+  // displacement is held in face_normal.
+  std::vector<int> face_checked, face_normal_stamp;
+  std::vector<Vec3> face_normal;
+  int face_stamp = 0;
   explicit Marks(const TriMesh& mesh)
-      : vertex(mesh.n_vertices(), 0), edge(mesh.n_edges(), 0), local(mesh.n_vertices(), -1) {}
+      : vertex(mesh.n_vertices(), 0), edge(mesh.n_edges(), 0), local(mesh.n_vertices(), -1),
+        face_checked(mesh.n_faces(), 0), face_normal_stamp(mesh.n_faces(), 0), face_normal(mesh.n_faces()) {}
+  bool fits(const TriMesh& mesh) const {
+    return vertex.size() == mesh.n_vertices() && edge.size() == mesh.n_edges() && face_checked.size() == mesh.n_faces();
+  }
 };
 
 void collect_edge_star(const TriMesh& mesh, TriMesh::EdgeHandle e, int k, EdgeStar& star, Marks& marks) {
@@ -81,26 +90,6 @@ void collect_edge_star(const TriMesh& mesh, TriMesh::EdgeHandle e, int k, EdgeSt
     begin = end;
   }
 }
-
-// Per-face stamps of optimize_region's fold check: the faces checked, and those whose normal at the trial
-// displacement is held, in the current attempt.
-struct FaceMarks {
-  std::vector<unsigned> checked_stamp, normal_stamp;
-  std::vector<Vec3> normal;
-  unsigned stamp = 0;
-  void fit(std::size_t faces) {
-    if (checked_stamp.size() >= faces) return;
-    checked_stamp.resize(faces, 0);
-    normal_stamp.resize(faces, 0);
-    normal.resize(faces);
-  }
-  void next() {
-    if (++stamp != 0) return;
-    std::fill(checked_stamp.begin(), checked_stamp.end(), 0u);  // wrapped: start over
-    std::fill(normal_stamp.begin(), normal_stamp.end(), 0u);
-    stamp = 1;
-  }
-};
 
 // p_j = n_l + n_s: troubling edges of the kn-star of the edge (edges at a vertex of star number < kn).
 int priority(const TriMesh& mesh, const EdgeStar& star, int kn, const std::vector<char>& is_troubling, Marks& marks) {
@@ -351,31 +340,29 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   };
   // Within an attempt a face is checked once (it is reached from each of its moving corners, and the check depends
   // on x only), and each face's normal at x is computed once (it is also read by its neighbours' checks).
-  thread_local FaceMarks faces;
-  faces.fit(mesh.n_faces());
   auto moved_normal = [&](TriMesh::FaceHandle f) {
     const auto i = static_cast<std::size_t>(f.idx());
-    if (faces.normal_stamp[i] != faces.stamp) {
+    if (marks.face_normal_stamp[i] != marks.face_stamp) {
       Vec3 q[3];
       moved_corners(f, q);
-      faces.normal[i] = geometry::triangle_normal(q[0], q[1], q[2]);
-      faces.normal_stamp[i] = faces.stamp;
+      marks.face_normal[i] = geometry::triangle_normal(q[0], q[1], q[2]);
+      marks.face_normal_stamp[i] = marks.face_stamp;
     }
-    return faces.normal[i];
+    return marks.face_normal[i];
   };
   for (int attempt = 0; attempt < 5; ++attempt, x *= 0.5) {
     bool ok = true;
-    faces.next();
+    ++marks.face_stamp;
     for (int i = 0; i < nv && ok; ++i) {
       for (auto f : mesh.vf_range(variables[static_cast<std::size_t>(i)])) {
-        auto& checked = faces.checked_stamp[static_cast<std::size_t>(f.idx())];
-        if (checked == faces.stamp) continue;
-        checked = faces.stamp;
+        const auto fi = static_cast<std::size_t>(f.idx());
+        if (marks.face_checked[fi] == marks.face_stamp) continue;
+        marks.face_checked[fi] = marks.face_stamp;
         Vec3 q[3];
         moved_corners(f, q);
         const Vec3 before = geometry::face_normal(mesh, f), after = geometry::triangle_normal(q[0], q[1], q[2]);
-        faces.normal[static_cast<std::size_t>(f.idx())] = after;
-        faces.normal_stamp[static_cast<std::size_t>(f.idx())] = faces.stamp;
+        marks.face_normal[fi] = after;
+        marks.face_normal_stamp[fi] = marks.face_stamp;
         ok = OpenMesh::dot(before, after) >= kMaxNormalTurnCos && geometry::min_angle(q[0], q[1], q[2]) >= kMinAngle;
         for (auto h : mesh.fh_range(f)) {
           const auto g = mesh.opposite_face_handle(h);
@@ -398,8 +385,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
 std::size_t optimize_edge_region(TriMesh& mesh, TriMesh::EdgeHandle e, int k, double emin, double emax,
                                  std::vector<std::pair<TriMesh::VertexHandle, Vec3>>& moved) {
   thread_local std::unique_ptr<Marks> marks;
-  if (!marks || marks->vertex.size() != mesh.n_vertices() || marks->edge.size() != mesh.n_edges())
-    marks = std::make_unique<Marks>(mesh);
+  if (!marks || !marks->fits(mesh)) marks = std::make_unique<Marks>(mesh);
   thread_local EdgeStar star;
   thread_local std::vector<VH> variables;
   collect_edge_star(mesh, e, k, star, *marks);
@@ -421,8 +407,7 @@ bool slides_on_border(const TriMesh& mesh, TriMesh::VertexHandle v) {
 
 void optimize_vertices(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& variables, double emin, double emax) {
   thread_local std::unique_ptr<Marks> marks;
-  if (!marks || marks->vertex.size() != mesh.n_vertices() || marks->edge.size() != mesh.n_edges())
-    marks = std::make_unique<Marks>(mesh);
+  if (!marks || !marks->fits(mesh)) marks = std::make_unique<Marks>(mesh);
   if (!variables.empty()) optimize_region(mesh, variables, emin, emax, 1.0, *marks);
 }
 
