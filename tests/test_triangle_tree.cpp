@@ -99,3 +99,40 @@ TEST(TriangleTree, ClosestPointsFromHintsAreTheTreesResults) {
   }
   EXPECT_GT(moved, coarse.size());  // most hints were not the answer
 }
+
+// face_distance() (each point's search started from the closest point of the point before) gives the largest of
+// the tree's own distances of the face's seven points, and that is the largest distance to the nearest triangle of
+// all: faces of a coarser sphere, some moved off the surface, against a finer noisy one.
+TEST(TriangleTree, FaceDistanceIsTheLargestOfItsSevenPointsDistances) {
+  TriMesh surface = make_icosphere({5.0, 3});
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> noise(-0.05, 0.05), scale(0.8, 1.3);
+  for (auto v : surface.vertices()) surface.point(v) += Vec3(noise(rng), noise(rng), noise(rng));
+  const Triangles triangles = triangles_of(surface);
+  Tree tree(triangles.begin(), triangles.end());
+  tree.build();
+  tree.accelerate_distance_queries();
+  const TriMesh coarse = make_icosphere({5.0, 2});
+  double largest = 0;
+  for (auto f : coarse.faces()) {
+    Vec3 a, b, c;
+    auto fv = coarse.cfv_begin(f);
+    a = coarse.point(*fv), b = coarse.point(*++fv), c = coarse.point(*++fv);
+    const double s = scale(rng);
+    a *= s, b *= s, c *= s;
+    const Vec3 g = (a + b + c) / 3.0;
+    double tree_worst = 0, all_worst = 0;
+    for (const Vec3& p : {g, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (2.0 * g + a) / 3.0, (2.0 * g + b) / 3.0,
+                          (2.0 * g + c) / 3.0}) {
+      tree_worst = std::max(tree_worst, tree.squared_distance(to_point(p)));
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Triangle& t : triangles) nearest = std::min(nearest, CGAL::squared_distance(to_point(p), t));
+      all_worst = std::max(all_worst, nearest);
+    }
+    const double d = face_distance(tree, a, b, c);
+    ASSERT_EQ(d, std::sqrt(tree_worst)) << "face " << f.idx();
+    ASSERT_NEAR(d, std::sqrt(all_worst), 1e-9) << "face " << f.idx();
+    largest = std::max(largest, d);
+  }
+  EXPECT_GT(largest, 1.0);  // faces well off the surface too
+}
