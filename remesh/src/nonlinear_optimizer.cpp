@@ -340,15 +340,18 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
   };
   // Within an attempt a face is checked once (it is reached from each of its moving corners, and the check depends
   // on x only), and each face's normal at x is computed once (it is also read by its neighbours' checks).
+  auto moved_face = [&](TriMesh::FaceHandle f, Vec3 (&q)[3]) {  // q: f's corners at x; returns its normal at x
+    moved_corners(f, q);
+    const auto i = static_cast<std::size_t>(f.idx());
+    marks.face_normal[i] = geometry::triangle_normal(q[0], q[1], q[2]);
+    marks.face_normal_stamp[i] = marks.face_stamp;
+    return marks.face_normal[i];
+  };
   auto moved_normal = [&](TriMesh::FaceHandle f) {
     const auto i = static_cast<std::size_t>(f.idx());
-    if (marks.face_normal_stamp[i] != marks.face_stamp) {
-      Vec3 q[3];
-      moved_corners(f, q);
-      marks.face_normal[i] = geometry::triangle_normal(q[0], q[1], q[2]);
-      marks.face_normal_stamp[i] = marks.face_stamp;
-    }
-    return marks.face_normal[i];
+    if (marks.face_normal_stamp[i] == marks.face_stamp) return marks.face_normal[i];
+    Vec3 q[3];
+    return moved_face(f, q);
   };
   for (int attempt = 0; attempt < 5; ++attempt, x *= 0.5) {
     bool ok = true;
@@ -359,10 +362,7 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
         if (marks.face_checked[fi] == marks.face_stamp) continue;
         marks.face_checked[fi] = marks.face_stamp;
         Vec3 q[3];
-        moved_corners(f, q);
-        const Vec3 before = geometry::face_normal(mesh, f), after = geometry::triangle_normal(q[0], q[1], q[2]);
-        marks.face_normal[fi] = after;
-        marks.face_normal_stamp[fi] = marks.face_stamp;
+        const Vec3 before = geometry::face_normal(mesh, f), after = moved_face(f, q);
         ok = OpenMesh::dot(before, after) >= kMaxNormalTurnCos && geometry::min_angle(q[0], q[1], q[2]) >= kMinAngle;
         for (auto h : mesh.fh_range(f)) {
           const auto g = mesh.opposite_face_handle(h);
