@@ -55,14 +55,15 @@ struct EdgeStar {
 struct Marks {
   std::vector<int> vertex, edge, local;
   int stamp = 0;
-  // optimize_region's fold check, per attempt (face_stamp): the faces checked, and those whose normal at the trial
-  // displacement is held in face_normal.
-  std::vector<int> face_checked, face_normal_stamp;
-  std::vector<Vec3> face_normal;
+  // optimize_region's fold check: per attempt (face_stamp), the faces checked and those whose normal at the trial
+  // displacement is held in face_normal; per region (stamp), those whose normal before the move is in face_before.
+  std::vector<int> face_checked, face_normal_stamp, face_before_stamp;
+  std::vector<Vec3> face_normal, face_before;
   int face_stamp = 0;
   explicit Marks(const TriMesh& mesh)
       : vertex(mesh.n_vertices(), 0), edge(mesh.n_edges(), 0), local(mesh.n_vertices(), -1),
-        face_checked(mesh.n_faces(), 0), face_normal_stamp(mesh.n_faces(), 0), face_normal(mesh.n_faces()) {}
+        face_checked(mesh.n_faces(), 0), face_normal_stamp(mesh.n_faces(), 0), face_before_stamp(mesh.n_faces(), 0),
+        face_normal(mesh.n_faces()), face_before(mesh.n_faces()) {}
   bool fits(const TriMesh& mesh) const {
     return vertex.size() == mesh.n_vertices() && edge.size() == mesh.n_edges() && face_checked.size() == mesh.n_faces();
   }
@@ -339,7 +340,16 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
     for (auto w : mesh.fv_range(f)) q[c++] = point_of(x, var_index(w), w);
   };
   // Within an attempt a face is checked once (it is reached from each of its moving corners, and the check depends
-  // on x only), and each face's normal at x is computed once (it is also read by its neighbours' checks).
+  // on x only), and each face's normal at x is computed once (it is also read by its neighbours' checks); each face's
+  // normal before the move is computed once for all the attempts (the mesh does not change until one is applied).
+  auto normal_before = [&](TriMesh::FaceHandle f) {
+    const auto i = static_cast<std::size_t>(f.idx());
+    if (marks.face_before_stamp[i] != marks.stamp) {
+      marks.face_before[i] = geometry::face_normal(mesh, f);
+      marks.face_before_stamp[i] = marks.stamp;
+    }
+    return marks.face_before[i];
+  };
   auto moved_face = [&](TriMesh::FaceHandle f, Vec3 (&q)[3]) {  // q: f's corners at x; returns its normal at x
     moved_corners(f, q);
     const auto i = static_cast<std::size_t>(f.idx());
@@ -362,12 +372,12 @@ void optimize_region(TriMesh& mesh, const std::vector<VH>& variables, double emi
         if (marks.face_checked[fi] == marks.face_stamp) continue;
         marks.face_checked[fi] = marks.face_stamp;
         Vec3 q[3];
-        const Vec3 before = geometry::face_normal(mesh, f), after = moved_face(f, q);
+        const Vec3 before = normal_before(f), after = moved_face(f, q);
         ok = OpenMesh::dot(before, after) >= kMaxNormalTurnCos && geometry::min_angle(q[0], q[1], q[2]) >= kMinAngle;
         for (auto h : mesh.fh_range(f)) {
           const auto g = mesh.opposite_face_handle(h);
           if (!ok || !g.is_valid()) continue;
-          const double fold_before = OpenMesh::dot(before, geometry::face_normal(mesh, g));
+          const double fold_before = OpenMesh::dot(before, normal_before(g));
           ok = fold_before < kFoldCos || OpenMesh::dot(after, moved_normal(g)) >= kFoldCos;
         }
         if (!ok) break;
