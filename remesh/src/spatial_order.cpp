@@ -8,6 +8,7 @@
 #include <array>
 #include <vector>
 
+#include "add_faces.hpp"
 #include "carbonmesh/remesh/morton_order.hpp"
 #include "carbonmesh/remesh/remesh_steps.hpp"
 #include "spatial_order.hpp"
@@ -32,11 +33,7 @@ bool build_in_spatial_order(const std::vector<Vec3>& points, const std::vector<s
     ordered.push_back(t);
   }
   std::sort(ordered.begin(), ordered.end());
-  for (const auto& t : ordered)
-    if (!out.add_face(TriMesh::VertexHandle(t[0]), TriMesh::VertexHandle(t[1]), TriMesh::VertexHandle(t[2]))
-             .is_valid())
-      return false;
-  return true;
+  return add_faces(out, ordered);  // (OpenMesh's add_face() on each in turn, element for element)
 }
 
 bool spatial_order(TriMesh& mesh) {
