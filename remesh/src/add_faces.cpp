@@ -11,10 +11,7 @@ namespace {
 class Connectivity {
  public:
   Connectivity(std::size_t vertices, std::size_t faces) : outgoing_(vertices, -1) {
-    to_.reserve(3 * faces + 6);
-    next_.reserve(3 * faces + 6);
-    prev_.reserve(3 * faces + 6);
-    face_.reserve(3 * faces + 6);
+    for (auto* a : {&to_, &next_, &prev_, &face_}) a->reserve(3 * faces + 6);  // (a closed surface's halfedges, 3F)
     face_halfedge_.reserve(faces);
   }
 
