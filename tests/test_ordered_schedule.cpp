@@ -92,6 +92,46 @@ TEST(OrderedSchedule, GivesTheResultOfOneThreadTakingTheTasksInOrder) {
   EXPECT_EQ(in_order, scheduled);
 }
 
+// Whether the tasks ran inside a parallel region of two threads.
+std::vector<char> in_parallel(const std::vector<Vec3>& c) {
+  std::vector<char> out(c.size(), 0);
+#ifdef _OPENMP
+  omp_set_num_threads(2);
+#endif
+  std::vector<std::size_t> order;
+  OrderedSchedule(c, kRadius).run([&](std::size_t k, int thread) {
+#ifdef _OPENMP
+    out[k] = omp_in_parallel() ? 1 : 0;
+#endif
+    if (out[k] == 0) {  // (alone: the order is the schedule's own)
+      EXPECT_EQ(thread, 0);
+      order.push_back(k);
+    }
+  });
+#ifdef _OPENMP
+  omp_set_num_threads(omp_get_num_procs());
+#endif
+  if (order.size() == c.size()) {
+    for (std::size_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
+  }
+  return out;
+}
+
+TEST(OrderedSchedule, RunsAChainInOrderOnTheCallingThread) {
+  // Each ball meets the one before it: no two tasks can run side by side, so no thread is woken for them.
+  std::vector<Vec3> chain;
+  for (int k = 0; k < 200; ++k) chain.emplace_back(0.1 * (k % 7), 0.2 * (k % 5), 0.05 * k);
+  const std::vector<char> chained = in_parallel(chain);
+  EXPECT_EQ(std::count(chained.begin(), chained.end(), 1), 0);
+#ifdef _OPENMP
+  // Balls apart from each other run in a parallel region (the other thread may take some).
+  std::vector<Vec3> apart = centres();
+  apart.resize(300);
+  const std::vector<char> spread = in_parallel(apart);
+  EXPECT_EQ(std::count(spread.begin(), spread.end(), 1), 300);
+#endif
+}
+
 TEST(OrderedSchedule, RunsNothingForNoTasks) {
   int runs = 0;
   OrderedSchedule({}, 1.0).run([&](std::size_t, int) { ++runs; });
