@@ -10,22 +10,12 @@
 
 #include "add_faces.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "test_meshes.hpp"
 
 namespace carbonmesh {
 namespace {
 
 using Faces = std::vector<std::array<int, 3>>;
-
-Faces faces_of(const TriMesh& mesh) {
-  Faces faces;
-  for (auto f : mesh.faces()) {
-    std::array<int, 3> t{};
-    int k = 0;
-    for (auto v : mesh.fv_range(f)) t[static_cast<std::size_t>(k++)] = v.idx();
-    faces.push_back(t);
-  }
-  return faces;
-}
 
 TriMesh vertices_of(const TriMesh& mesh) {
   TriMesh out;
@@ -69,7 +59,7 @@ void expect_same_as_openmesh(const TriMesh& shape, Faces faces, const std::strin
 // The faces in their order, sorted, and shuffled: a random order opens many boundary patches that later faces
 // join (add_face()'s re-linking of patches and its adjusting of outgoing halfedges).
 void expect_same_in_any_order(const TriMesh& shape, const std::string& what) {
-  const Faces faces = faces_of(shape);
+  const Faces faces = test::triangles_of(shape);
   expect_same_as_openmesh(shape, faces, what + ", in order");
   Faces sorted = faces;
   std::sort(sorted.begin(), sorted.end());

@@ -23,6 +23,18 @@ inline TriMesh mesh_from(const std::vector<Vec3>& points, const std::vector<std:
   return mesh;
 }
 
+// The triangles of a mesh as vertex indices, in face order (mesh_from's inverse).
+inline std::vector<std::array<int, 3>> triangles_of(const TriMesh& mesh) {
+  std::vector<std::array<int, 3>> out;
+  for (auto f : mesh.faces()) {
+    std::array<int, 3> t{};
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) t[static_cast<std::size_t>(k++)] = v.idx();
+    out.push_back(t);
+  }
+  return out;
+}
+
 // Scales a mesh about the origin so that its mean edge length is `mean`.
 inline TriMesh scaled(TriMesh mesh, double mean) {
   const double factor = mean / edge_stats(mesh).mean;

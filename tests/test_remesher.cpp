@@ -31,6 +31,7 @@ namespace carbonmesh {
 namespace {
 
 using test::scaled;
+using test::triangles_of;
 
 TriMesh sphere(int subdivisions, double mean) { return scaled(make_icosphere({10.0, subdivisions}), mean); }
 TriMesh torus(double edge, double mean) { return scaled(make_torus({10.0, 4.0, edge}), mean); }
@@ -1558,16 +1559,6 @@ TEST(ValenceOptimizer, SameFlipsOnTwoThreadsAsOnOne) {
   TriMesh scrambled = make_icosphere({10.0, 5});  // 30720 edges
   for (auto e : scrambled.edges())
     if (e.idx() % 7 == 0 && scrambled.is_flip_ok(e)) scrambled.flip(e);
-  auto faces = [](const TriMesh& mesh) {
-    std::vector<std::array<int, 3>> out;
-    for (auto f : mesh.faces()) {
-      std::array<int, 3> t{};
-      int k = 0;
-      for (auto v : mesh.fv_range(f)) t[static_cast<std::size_t>(k++)] = v.idx();
-      out.push_back(t);
-    }
-    return out;
-  };
   TriMesh one = scrambled, two = scrambled;
   omp_set_num_threads(1);
   const std::size_t a = correct_valence(one, 0.5);
@@ -1576,7 +1567,7 @@ TEST(ValenceOptimizer, SameFlipsOnTwoThreadsAsOnOne) {
   omp_set_num_threads(omp_get_num_procs());
   EXPECT_GT(a, 1000u);
   EXPECT_EQ(a, b);
-  EXPECT_EQ(faces(one), faces(two));
+  EXPECT_EQ(triangles_of(one), triangles_of(two));
   EXPECT_GT(valence_stats(one).percent_regular, valence_stats(scrambled).percent_regular);
 #endif
 }
