@@ -72,7 +72,7 @@ class OrderedSchedule {
     for (std::size_t k = 1; k < tasks_ && chain_; ++k) chain_ = share_cell(k - 1, k);
   }
 
-  // Runs run(k, thread) for every task k, on every thread.
+  // Runs run(k, thread) for every task k: on every thread, or in order on the calling thread for a chain.
   void run(const std::function<void(std::size_t, int)>& run) {
     if (tasks_ == 0) return;
     if (chain_) {  // in order on this thread, without waking the others for nothing
