@@ -135,10 +135,12 @@ def plot_convergence(csv_path, png_path, title):
     plt.close(fig)
 
 
-def coarse_level_table(cli, models_dir, models, work, repeat):
+def coarse_level_table(cli, models_dir, models, work, repeat, protocol_figures):
     """The protocol as in the first table against the same with one coarse level (`--coarse-levels 1`: remeshed at
     [2.4, 3.6] first, then split into four; dropped for the input itself where it does not converge or loses part of
-    the surface), each the fastest of `repeat` runs, the two taking turns: the lines of its subsection."""
+    the surface), each the fastest of `repeat` runs, the two taking turns: the lines of its subsection.
+    `protocol_figures` (model -> `stats` of the first table's output) stand for the protocol's runs here, whose
+    outputs are the same (the remesh is deterministic): only their seconds are measured again."""
     lines = ["### The protocol with one coarse level (`--coarse-levels 1`)", "",
              "Not the dissertation's Algorithm 1 and not `carbonmesh remesh`'s default (docs/algorithm.md, Coarse to "
              "fine); the same protocol otherwise, against the protocol as in the first table, the fastest of "
@@ -148,11 +150,11 @@ def coarse_level_table(cli, models_dir, models, work, repeat):
              "Hausdorff RMS |", "|---|---|---|---|---|---|---|"]
     for model in models:
         src = os.path.join(models_dir, model + ".off")
-        outs = [os.path.join(work, f"{model}-{name}.off") for name in ("direct", "coarse")]
+        direct_out, coarse_out = (os.path.join(work, f"{model}-{name}.off") for name in ("direct", "coarse"))
         (direct, _), (coarse, _) = fastest_of(
-            [[cli, "-q", "remesh", src, outs[0], "--json"] + PROTOCOL,
-             [cli, "-q", "remesh", src, outs[1], "--json", "--coarse-levels", "1"] + PROTOCOL], repeat)
-        figures = [stats(cli, out, src) for out in outs]
+            [[cli, "-q", "remesh", src, direct_out, "--json"] + PROTOCOL,
+             [cli, "-q", "remesh", src, coarse_out, "--json", "--coarse-levels", "1"] + PROTOCOL], repeat)
+        figures = [protocol_figures[model], stats(cli, coarse_out, src)]
 
         def both(cell):  # "protocol / one level"
             return " / ".join(cell(s) for s in figures)
@@ -200,13 +202,14 @@ def main():
              "farthest points inside faces: fertility 0.4807 where it is 0.5993). CGAL's output is measured "
              "with `stats --repair` (it can contain degenerate triangles). Written by "
              "tools/bench/remesh.py.", ""] + header("model")
-    ratios, turns, steps = [], {}, []
+    ratios, turns, steps, figures = [], {}, [], {}
     for model in models:
         src = os.path.join(args.models, model + ".off")
         ours, conv = os.path.join(work, model + ".off"), os.path.join(work, model + ".csv")
         theirs = os.path.join(work, model + "-cgal.off")
         (result, rss), (peer_result, peer_rss) = protocol_and_peer(cli, peer, src, ours, theirs, args.repeat, conv)
-        lines.append(row(model, "carbonmesh", result["seconds"], rss, stats(cli, ours, src), result["iterations"]))
+        figures[model] = stats(cli, ours, src)
+        lines.append(row(model, "carbonmesh", result["seconds"], rss, figures[model], result["iterations"]))
         plot_convergence(conv, os.path.join(img_dir, f"convergence-{model}.png"), f"{model}: long + short")
         lines.append(row(model, "CGAL", peer_result["seconds"], peer_rss, stats(cli, theirs, src, repair=True), 10))
         ratios.append((model, result["seconds"] / max(peer_result["seconds"], 1e-9)))
@@ -222,7 +225,7 @@ def main():
               "carbonmesh | CGAL |", "|---|---|---|---|---|---|---|---|---|---|---|"] + steps + ["",
               "Convergence curves: " + ", ".join(f"[{m}](img/convergence-{m}.png)" for m in models), ""]
     if not args.no_coarse:
-        lines += coarse_level_table(cli, args.models, models, work, args.repeat)
+        lines += coarse_level_table(cli, args.models, models, work, args.repeat, figures)
     if not args.no_study and "bunny" in models:
         lines += ["### Parameter study on bunny (Table 5.1 of the dissertation: kl x weights)", "",
                   "| kl | weights | iterations | seconds | long | short | % regular |", "|---|---|---|---|---|---|---|"]
