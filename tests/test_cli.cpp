@@ -22,11 +22,10 @@ struct RunResult {
   std::string output;
 };
 
-// `env` (optional): a prefix for the command, e.g. "env -u NAME".
-RunResult run_cli(const std::string& args, const std::string& env = "") {
+RunResult run_cli(const std::string& args) {
   const auto out = std::filesystem::temp_directory_path() /
                    ("carbonmesh-test-cli-" + std::to_string(::getpid()) + ".txt");
-  const std::string command = env + " " + CARBONMESH_CLI + " " + args + " > " + out.string() + " 2>&1";
+  const std::string command = std::string(CARBONMESH_CLI) + " " + args + " > " + out.string() + " 2>&1";
   const int status = std::system(command.c_str());
   std::ifstream in(out);
   std::stringstream text;
@@ -71,22 +70,6 @@ TEST(CliShape, GeodesicWritesTheDualOfC240) {
   EXPECT_NE(stats.output.find("V 122  E 360  F 240"), std::string::npos) << stats.output;
   EXPECT_NE(stats.output.find("valence interior 5:12 6:110"), std::string::npos) << stats.output;
   std::filesystem::remove(path);
-}
-
-// The program starts itself once more with libgomp's idle thread spinning 1000 turns instead of its default 300000
-// (main.cpp), unless the user has set OMP_WAIT_POLICY or GOMP_SPINCOUNT: their choice reaches the runtime unchanged.
-TEST(CliRuntime, ShortSpinUnlessTheUserChoseTheWait) {
-  const std::string clean = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT";
-  const RunResult chosen_by_us = run_cli("-v help units", clean);
-  EXPECT_EQ(chosen_by_us.exit_code, 0) << chosen_by_us.output;
-  EXPECT_NE(chosen_by_us.output.find("OpenMP wait: OMP_WAIT_POLICY=(unset) GOMP_SPINCOUNT=1000"), std::string::npos)
-      << chosen_by_us.output;
-  const RunResult policy = run_cli("-v help units", clean + " OMP_WAIT_POLICY=active");
-  EXPECT_NE(policy.output.find("OpenMP wait: OMP_WAIT_POLICY=active GOMP_SPINCOUNT=(unset)"), std::string::npos)
-      << policy.output;
-  const RunResult spin = run_cli("-v help units", clean + " GOMP_SPINCOUNT=7");
-  EXPECT_NE(spin.output.find("OpenMP wait: OMP_WAIT_POLICY=(unset) GOMP_SPINCOUNT=7"), std::string::npos)
-      << spin.output;
 }
 
 TEST(CliHelp, ListsTheTopicsWithoutOne) {

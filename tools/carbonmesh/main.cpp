@@ -11,8 +11,6 @@
 #include <iostream>
 #if defined(__GLIBC__)
 #include <malloc.h>
-#endif
-#if defined(__linux__)
 #include <unistd.h>
 #endif
 
@@ -22,52 +20,29 @@
 
 namespace {
 
-#if defined(__linux__)
-// Settings that the C library and the OpenMP runtime read only when the program starts: where the user has set
-// neither, the program sets them and starts itself once more (execv of /proc/self/exe). Not under valgrind, which
-// would then lose the restarted process.
-//
+#if defined(__GLIBC__) && defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
 // Transparent huge pages for the heap: with the tunable glibc.malloc.hugetlb=1 glibc asks the kernel to back its
 // heap with 2 MB pages (kernels with THP in "madvise" mode, the Debian default, give them only when asked). Fewer
 // page faults and TLB misses on the large vectors of the dual optimisation: the built-in sphere at 10^6 atoms
-// 45.8 -> 41.5 s, fertility at 250000 atoms 12.8 -> 12.4 s, the same output. Not when GLIBC_TUNABLES is set
-// already (set it empty to run without), nor under AddressSanitizer.
-//
-// The idle OpenMP thread's spin: after a parallel loop libgomp's waiting thread spins for about 3 ms before it
-// sleeps (300000 turns, its default), and on a 2-core machine a spinning core slows the other one, which is then
-// doing the remesher's serial work (stellar operations, flips, the snap's moves): bunny on one thread took
-// 1.17-1.23 s, and 1.31-1.42 s with a busy loop on the other core. With 1000 turns (libgomp's own count when
-// there are more threads than cores) the seed-protocol remesh of bunny, fertility and elephant is 7-12% faster
-// (8 interleaved runs each, fastest and median), the sphere's runs no longer spread to 3-4 times their fastest,
-// and the builds of fertility at 50000 atoms and bunny at 150000 are no slower. Not when OMP_WAIT_POLICY or
-// GOMP_SPINCOUNT is set already: the user's choice stands.
-void restart_with_runtime_settings(char** argv) {
+// 45.8 -> 41.5 s, fertility at 250000 atoms 12.8 -> 12.4 s, the same output. glibc reads its tunables only at
+// start-up, so the program starts itself once more with the tunable set. Not when GLIBC_TUNABLES is set already
+// (set it empty to run without) or under valgrind (which would then lose the restarted process).
+void restart_with_huge_pages(char** argv) {
+  if (std::getenv("GLIBC_TUNABLES") != nullptr) return;
   if (const char* preload = std::getenv("LD_PRELOAD"); preload != nullptr && std::strstr(preload, "vgpreload"))
     return;
-  bool restart = false, tunables = false, spin = false;
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
-  if (std::getenv("GLIBC_TUNABLES") == nullptr) {
-    setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1);
-    restart = tunables = true;
-  }
-#endif
-  if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr) {
-    setenv("GOMP_SPINCOUNT", "1000", 1);
-    restart = spin = true;
-  }
-  if (!restart) return;
+  setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1);
   execv("/proc/self/exe", argv);
-  if (tunables) unsetenv("GLIBC_TUNABLES");  // the restart failed (no /proc): go on without
-  if (spin) unsetenv("GOMP_SPINCOUNT");
+  unsetenv("GLIBC_TUNABLES");  // the restart failed (no /proc): go on without
 }
 #else
-void restart_with_runtime_settings(char**) {}
+void restart_with_huge_pages(char**) {}
 #endif
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  restart_with_runtime_settings(argv);
+  restart_with_huge_pages(argv);
 #if defined(__GLIBC__)
   // Large structures allocate and free meshes and vectors of tens of MB over and over (mesh copies, L-BFGS
   // vectors). glibc's defaults give blocks above its adaptive threshold back to the kernel at once, so each new one
@@ -114,12 +89,6 @@ int main(int argc, char** argv) {
                           : verbosity >= 2 ? spdlog::level::trace
                           : verbosity == 1 ? spdlog::level::debug
                                            : spdlog::level::info);
-  {
-    const char* policy = std::getenv("OMP_WAIT_POLICY");
-    const char* spin = std::getenv("GOMP_SPINCOUNT");
-    spdlog::debug("OpenMP wait: OMP_WAIT_POLICY={} GOMP_SPINCOUNT={}", policy ? policy : "(unset)",
-                  spin ? spin : "(unset)");
-  }
   try {
     return action ? action() : 0;
   } catch (const carbonmesh::InputError& e) {
