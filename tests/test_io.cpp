@@ -149,6 +149,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "degenerate"},
         BadInput{"duplicate_vertex.off",
                  off("0 0 0\n1 0 0\n0 1 0\n1 0 0\n1 1 0\n", "3 0 1 2\n3 3 4 2\n", 5, 2), "duplicate vertices"},
+        // Two triangles that would share the edge 1-2, but the second's copy of vertex 2 is 1e-15 off it (a seam
+        // computed twice): an unwelded crack, not two borders lying on each other.
+        BadInput{"unwelded_seam.off", off("0 0 0\n1 0 0\n0 1 0\n1 1 0\n1e-15 1 0\n", "3 0 1 2\n3 1 3 4\n", 5, 2),
+                 "closer than"},
         BadInput{"flipped.off", off("0 0 0\n1 0 0\n0 1 0\n1 1 0\n", "3 0 1 2\n3 1 2 3\n", 4, 2),
                  "inconsistent orientation"},
         BadInput{"unknown.xyz", "1 2 3\n", "unsupported format"},
@@ -199,6 +203,30 @@ TEST(MeshIO, RepairMergesDuplicatesAndDropsDegenerateFaces) {
   EXPECT_EQ(mesh.n_vertices(), 4u);
   const RunResult result = run_cli("stats --repair " + path.string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
+}
+
+// --repair welds nearly coincident vertices too: the seam above loads as one sheet with one border, and vertices
+// farther apart than the tolerance stay apart.
+TEST(MeshIO, RepairWeldsNearlyCoincidentVertices) {
+  const auto path = write_file("seam.off", off("0 0 0\n1 0 0\n0 1 0\n1 1 0\n1e-15 1 0\n", "3 0 1 2\n3 1 3 4\n", 5, 2));
+  EXPECT_THROW(load_mesh(path), InputError);
+  LoadSettings settings;
+  settings.repair = true;
+  LoadReport report;
+  const TriMesh mesh = load_mesh(path, settings, &report);
+  EXPECT_EQ(report.duplicate_vertices, 0u);
+  EXPECT_EQ(report.near_duplicate_vertices, 1u);
+  EXPECT_EQ(mesh.n_vertices(), 4u);
+  EXPECT_EQ(topology(mesh).boundary_loops, 1u);
+  // Two triangles with corners 1e-3 apart at coordinates of about 1: a real gap (the tolerance is 4 float roundings
+  // of the largest coordinate, about 5e-7 here), kept: two components.
+  const auto gap = write_file("gap.off", off("0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 1\n1e-3 1 0\n", "3 0 1 2\n3 3 4 5\n",
+                                             6, 2));
+  LoadReport gap_report;
+  const TriMesh apart = load_mesh(gap, {}, &gap_report);
+  EXPECT_EQ(gap_report.near_duplicate_vertices, 0u);
+  EXPECT_EQ(apart.n_vertices(), 6u);
+  EXPECT_EQ(topology(apart).components, 2u);
 }
 
 TEST(Cli, BadOptionIsAnErrorWithAHint) {

@@ -1,5 +1,6 @@
 #include "carbonmesh/remesh/io.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <OpenMesh/Core/IO/IOManager.hh>
@@ -7,8 +8,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -43,6 +46,81 @@ struct PointHash {
     return h;
   }
 };
+
+// Vertices closer than `tolerance` to another but not at its position (those are the exact duplicates): a seam whose
+// corners were computed twice and rounded apart (a tube's seam at angles 0 and 2 pi: sin(2 pi) is -2.4e-16, not 0),
+// which would otherwise load as two borders lying on each other, a crack the remesh keeps open. Only the referenced
+// representatives of the exact duplicates (remap[i] == i) are compared. The pairs within `tolerance` join groups,
+// and every vertex of a group but its first (the lowest index) gets the first in `remap`: the same result in any
+// order. Returns how many, with the pair within `tolerance` of the lowest larger index in `example`. The points are
+// sorted by a hash of cells 64 tolerances wide (a collision only adds distances to compare): the box of half-width
+// `tolerance` around a point lies in its own cell but where it is within `tolerance` of a cell's side.
+std::size_t near_duplicate_vertices(const std::vector<Vec3>& points, const std::vector<char>& referenced,
+                                    double tolerance, std::vector<int>& remap, std::array<int, 2>& example,
+                                    double& example_distance) {
+  if (!(tolerance > 0)) return 0;
+  const double cell = 64.0 * tolerance;
+  auto cell_of = [cell](double x) { return static_cast<std::int64_t>(std::floor(x / cell)); };
+  auto hash = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (const std::int64_t v : {x, y, z}) h = (h ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
+    return h;
+  };
+  std::vector<std::pair<std::uint64_t, int>> cells;  // (hash of the cell, vertex), sorted
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (referenced[i] && remap[i] == static_cast<int>(i))
+      cells.emplace_back(hash(cell_of(points[i][0]), cell_of(points[i][1]), cell_of(points[i][2])),
+                         static_cast<int>(i));
+  std::sort(cells.begin(), cells.end());
+  std::vector<int> group(points.size());  // union-find; a group's root is its lowest index
+  for (std::size_t i = 0; i < group.size(); ++i) group[i] = static_cast<int>(i);
+  auto root = [&group](int i) {
+    while (group[static_cast<std::size_t>(i)] != i)
+      i = group[static_cast<std::size_t>(i)] = group[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  std::array<int, 2> first{-1, -1};  // (lower, higher) of the pair with the lowest higher index
+  auto compare = [&](int i, int j) {
+    if (i == j) return;
+    const double d = (points[static_cast<std::size_t>(i)] - points[static_cast<std::size_t>(j)]).norm();
+    if (d > tolerance) return;
+    const auto [lower, higher] = std::minmax(i, j);
+    if (first[1] < 0 || higher < first[1] || (higher == first[1] && lower < first[0])) {
+      first = {lower, higher};
+      example_distance = d;
+    }
+    const int ri = root(i), rj = root(j);
+    if (ri != rj) group[static_cast<std::size_t>(std::max(ri, rj))] = std::min(ri, rj);
+  };
+  for (std::size_t a = 0; a < cells.size(); ++a) {
+    const int i = cells[a].second;
+    for (std::size_t b = a + 1; b < cells.size() && cells[b].first == cells[a].first; ++b) compare(i, cells[b].second);
+    const Vec3& p = points[static_cast<std::size_t>(i)];
+    std::array<std::int64_t, 3> lo{}, hi{}, own{};
+    for (std::size_t c = 0; c < 3; ++c)
+      lo[c] = cell_of(p[c] - tolerance), hi[c] = cell_of(p[c] + tolerance), own[c] = cell_of(p[c]);
+    if (lo == own && hi == own) continue;  // the box inside its own cell
+    for (auto x = lo[0]; x <= hi[0]; ++x)
+      for (auto y = lo[1]; y <= hi[1]; ++y)
+        for (auto z = lo[2]; z <= hi[2]; ++z) {
+          if (std::array<std::int64_t, 3>{x, y, z} == own) continue;
+          const std::uint64_t h = hash(x, y, z);
+          for (auto it = std::lower_bound(cells.begin(), cells.end(), std::pair<std::uint64_t, int>{h, -1});
+               it != cells.end() && it->first == h; ++it)
+            compare(i, it->second);
+        }
+  }
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!referenced[i] || remap[i] != static_cast<int>(i)) continue;
+    const int r = root(static_cast<int>(i));
+    if (r == static_cast<int>(i)) continue;
+    remap[i] = r;
+    ++count;
+  }
+  if (count > 0) example = first;
+  return count;
+}
 
 }  // namespace
 
@@ -131,6 +209,26 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
     throw InputError(source + ": " + std::to_string(report.duplicate_vertices) +
                      " duplicate vertices (e.g. vertices " + std::to_string(dup_example_a) + " and " +
                      std::to_string(dup_example_b) + " share a position); use --repair to merge them");
+  {
+    // Nearly coincident vertices: within 4 float roundings of the largest coordinate (a file's float coordinates
+    // computed twice differ by about that), far below any length the remesh works at.
+    double largest = 0;
+    for (std::size_t i = 0; i < soup.points.size(); ++i)
+      if (referenced[i])
+        for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(soup.points[i][c]));
+    const double tolerance = 4.0 * std::numeric_limits<float>::epsilon() * largest;
+    std::array<int, 2> example{-1, -1};
+    double example_distance = 0;
+    report.near_duplicate_vertices =
+        near_duplicate_vertices(soup.points, referenced, tolerance, remap, example, example_distance);
+    for (auto& r : remap) r = remap[static_cast<std::size_t>(r)];  // exact duplicates of a merged vertex follow it
+    if (report.near_duplicate_vertices > 0 && !settings.repair)
+      throw InputError(fmt::format("{}: {} {} closer than {:.3g} to another (e.g. vertices {} and {}, {:.3g} apart): "
+                                   "an unwelded seam or crack; use --repair to merge them",
+                                   source, report.near_duplicate_vertices,
+                                   report.near_duplicate_vertices == 1 ? "vertex" : "vertices", tolerance, example[0],
+                                   example[1], example_distance));
+  }
 
   // Degenerate and duplicate faces.
   std::vector<std::array<int, 3>> kept;
@@ -252,16 +350,18 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
   }
   mesh.update_normals();
 
-  report.repaired = settings.repair && (report.duplicate_vertices + report.degenerate_faces +
-                                        report.duplicate_faces) > 0;
+  report.repaired = settings.repair && (report.duplicate_vertices + report.near_duplicate_vertices +
+                                        report.degenerate_faces + report.duplicate_faces) > 0;
   if (report.triangulated_polygons > 0)
     spdlog::info("{}: triangulated {} polygons with more than three corners", source,
                  report.triangulated_polygons);
   if (report.unreferenced_vertices > 0)
     spdlog::warn("{}: removed {} vertices used by no face", source, report.unreferenced_vertices);
   if (report.repaired)
-    spdlog::warn("{}: repaired: merged {} duplicate vertices, removed {} degenerate and {} duplicate faces",
-                 source, report.duplicate_vertices, report.degenerate_faces, report.duplicate_faces);
+    spdlog::warn("{}: repaired: merged {} duplicate and {} nearly coincident vertices, removed {} degenerate and {} "
+                 "duplicate faces",
+                 source, report.duplicate_vertices, report.near_duplicate_vertices, report.degenerate_faces,
+                 report.duplicate_faces);
   if (report_out) *report_out = report;
   return mesh;
 }

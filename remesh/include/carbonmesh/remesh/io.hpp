@@ -26,6 +26,7 @@ struct LoadReport {
   std::size_t triangulated_polygons = 0;  // polygons with more than three corners, fan-triangulated
   std::size_t unreferenced_vertices = 0;  // removed
   std::size_t duplicate_vertices = 0;     // vertices at the same position as an earlier one
+  std::size_t near_duplicate_vertices = 0;  // others within 4 float roundings of the largest coordinate of one
   std::size_t degenerate_faces = 0;       // zero area or a repeated corner
   std::size_t duplicate_faces = 0;        // same corner set as an earlier face
   bool repaired = false;
@@ -37,7 +38,8 @@ PolygonSoup read_polygon_soup(const std::filesystem::path& file);
 
 // Validates a soup and builds the half-edge mesh. `source` names the input in error messages.
 // Throws InputError (NaN/Inf coordinates, out-of-range indices, no faces, non-manifold edges or vertices,
-// inconsistent orientation, and -- unless settings.repair -- duplicate vertices and degenerate faces).
+// inconsistent orientation, and -- unless settings.repair -- duplicate or nearly coincident vertices and degenerate
+// faces).
 TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const LoadSettings& settings = {},
                    LoadReport* report = nullptr);
 
