@@ -87,8 +87,9 @@ class Corpus:
         self.cases.append((label, args, check))
 
 
-def stats_json(cli, mesh):
-    out = subprocess.run([cli, "-q", "stats", "--json", mesh], capture_output=True, text=True, timeout=TIMEOUT)
+def stats_json(cli, mesh, *options):
+    out = subprocess.run([cli, "-q", "stats", "--json", mesh, *options], capture_output=True, text=True,
+                         timeout=TIMEOUT)
     return json.loads(out.stdout) if out.returncode == 0 else None
 
 
@@ -232,9 +233,8 @@ def verify(cli, check, said):
         left = [first_line(line) for line in said.splitlines() if "remain outside" in line]
         if left:
             return f"later: {left[0]}"
-        out = subprocess.run([cli, "-q", "stats", "--json", target, "--emin", expected[0], "--emax", expected[1]],
-                             capture_output=True, text=True, timeout=TIMEOUT)
-        edges = json.loads(out.stdout)["edges"] if out.returncode == 0 else None
+        s = stats_json(cli, target, "--emin", expected[0], "--emax", expected[1])
+        edges = s["edges"] if s else None
         if edges and edges["long"] == 0 and edges["short"] == 0:
             return "every edge inside (long 0, short 0)"
         return "NO REPORT of the edges left" + (f" (long {edges['long']}, short {edges['short']})" if edges else "")

@@ -34,16 +34,21 @@ bool is_supported_input(const std::string& ext) {
   return ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl";
 }
 
+// FNV-1a over three 64-bit words.
+std::uint64_t hash_words(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const std::uint64_t w : {a, b, c}) h = (h ^ w) * 1099511628211ull;
+  return h;
+}
+
 struct PointHash {
   std::size_t operator()(const Vec3& p) const {
-    std::size_t h = 1469598103934665603ull;
+    std::array<std::uint64_t, 3> bits{};
     for (int i = 0; i < 3; ++i) {
-      std::uint64_t bits;
-      double v = p[i] == 0.0 ? 0.0 : p[i];  // -0 == +0
-      std::memcpy(&bits, &v, sizeof bits);
-      h = (h ^ bits) * 1099511628211ull;
+      const double v = p[i] == 0.0 ? 0.0 : p[i];  // -0 == +0
+      std::memcpy(&bits[static_cast<std::size_t>(i)], &v, sizeof(double));
     }
-    return h;
+    return static_cast<std::size_t>(hash_words(bits[0], bits[1], bits[2]));
   }
 };
 
@@ -62,9 +67,7 @@ std::size_t near_duplicate_vertices(const std::vector<Vec3>& points, const std::
   const double cell = 64.0 * tolerance;
   auto cell_of = [cell](double x) { return static_cast<std::int64_t>(std::floor(x / cell)); };
   auto hash = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (const std::int64_t v : {x, y, z}) h = (h ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
-    return h;
+    return hash_words(static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y), static_cast<std::uint64_t>(z));
   };
   std::vector<std::pair<std::uint64_t, int>> cells;  // (hash of the cell, vertex), sorted
   for (std::size_t i = 0; i < points.size(); ++i)
