@@ -57,13 +57,19 @@ struct PointHash {
 // which would otherwise load as two borders lying on each other, a crack the remesh keeps open. Only the referenced
 // representatives of the exact duplicates (remap[i] == i) are compared. The pairs within `tolerance` join groups,
 // and every vertex of a group but its first (the lowest index) gets the first in `remap`: the same result in any
-// order. Returns how many, with the pair within `tolerance` of the lowest larger index in `example`. The points are
+// order. The result counts them and names the pair within `tolerance` of the lowest larger index. The points are
 // sorted by a hash of cells 64 tolerances wide (a collision only adds distances to compare): the box of half-width
 // `tolerance` around a point lies in its own cell but where it is within `tolerance` of a cell's side.
-std::size_t near_duplicate_vertices(const std::vector<Vec3>& points, const std::vector<char>& referenced,
-                                    double tolerance, std::vector<int>& remap, std::array<int, 2>& example,
-                                    double& example_distance) {
-  if (!(tolerance > 0)) return 0;
+struct NearDuplicates {
+  std::size_t count = 0;
+  std::array<int, 2> example{-1, -1};  // (lower, higher) index of one pair within the tolerance
+  double example_distance = 0;
+};
+
+NearDuplicates near_duplicate_vertices(const std::vector<Vec3>& points, const std::vector<char>& referenced,
+                                       double tolerance, std::vector<int>& remap) {
+  NearDuplicates out;
+  if (!(tolerance > 0)) return out;
   const double cell = 64.0 * tolerance;
   auto cell_of = [cell](double x) { return static_cast<std::int64_t>(std::floor(x / cell)); };
   auto hash = [](std::int64_t x, std::int64_t y, std::int64_t z) {
@@ -82,15 +88,15 @@ std::size_t near_duplicate_vertices(const std::vector<Vec3>& points, const std::
       i = group[static_cast<std::size_t>(i)] = group[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])];
     return i;
   };
-  std::array<int, 2> first{-1, -1};  // (lower, higher) of the pair with the lowest higher index
   auto compare = [&](int i, int j) {
     if (i == j) return;
     const double d = (points[static_cast<std::size_t>(i)] - points[static_cast<std::size_t>(j)]).norm();
     if (d > tolerance) return;
     const auto [lower, higher] = std::minmax(i, j);
+    auto& first = out.example;  // the pair with the lowest higher index
     if (first[1] < 0 || higher < first[1] || (higher == first[1] && lower < first[0])) {
       first = {lower, higher};
-      example_distance = d;
+      out.example_distance = d;
     }
     const int ri = root(i), rj = root(j);
     if (ri != rj) group[static_cast<std::size_t>(std::max(ri, rj))] = std::min(ri, rj);
@@ -113,16 +119,13 @@ std::size_t near_duplicate_vertices(const std::vector<Vec3>& points, const std::
             compare(i, it->second);
         }
   }
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!referenced[i] || remap[i] != static_cast<int>(i)) continue;
-    const int r = root(static_cast<int>(i));
-    if (r == static_cast<int>(i)) continue;
-    remap[i] = r;
-    ++count;
+  for (const auto& [h, i] : cells) {
+    const int r = root(i);
+    if (r == i) continue;
+    remap[static_cast<std::size_t>(i)] = r;
+    ++out.count;
   }
-  if (count > 0) example = first;
-  return count;
+  return out;
 }
 
 }  // namespace
@@ -220,17 +223,15 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
       if (referenced[i])
         for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(soup.points[i][c]));
     const double tolerance = 4.0 * std::numeric_limits<float>::epsilon() * largest;
-    std::array<int, 2> example{-1, -1};
-    double example_distance = 0;
-    report.near_duplicate_vertices =
-        near_duplicate_vertices(soup.points, referenced, tolerance, remap, example, example_distance);
+    const NearDuplicates near = near_duplicate_vertices(soup.points, referenced, tolerance, remap);
+    report.near_duplicate_vertices = near.count;
     for (auto& r : remap) r = remap[static_cast<std::size_t>(r)];  // exact duplicates of a merged vertex follow it
     if (report.near_duplicate_vertices > 0 && !settings.repair)
       throw InputError(fmt::format("{}: {} {} closer than {:.3g} to another (e.g. vertices {} and {}, {:.3g} apart): "
                                    "an unwelded seam or crack; use --repair to merge them",
                                    source, report.near_duplicate_vertices,
-                                   report.near_duplicate_vertices == 1 ? "vertex" : "vertices", tolerance, example[0],
-                                   example[1], example_distance));
+                                   report.near_duplicate_vertices == 1 ? "vertex" : "vertices", tolerance,
+                                   near.example[0], near.example[1], near.example_distance));
   }
 
   // Degenerate and duplicate faces.
