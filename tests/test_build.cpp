@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -113,6 +114,8 @@ TEST(BuildCommand, OpenCapIsPassivatedWithTopology) {
   EXPECT_EQ(d.positions.size(), atomic.positions.size());
   EXPECT_EQ(d.bonds.size(), s["bonds"].get<std::size_t>());
   EXPECT_EQ(s["files"]["lammps_data_full"], (dir / "out" / "structure-full.data").string());
+  EXPECT_EQ(s["input_self_intersections"]["pairs"], 0);
+  EXPECT_EQ(s["remeshed_mesh"]["self_intersections"]["pairs"], 0);
   fs::remove_all(dir);
 }
 
@@ -137,6 +140,28 @@ TEST(BuildCommand, ComponentsSmallerThanAC20CageAreRemoved) {
   EXPECT_LT(s["remesh"]["iterations"].get<int>(), 150);
   EXPECT_GT(s["optimization"]["bonds_after"]["min"].get<double>(), 1.3);
   EXPECT_DOUBLE_EQ(s["percent_three_bonds"].get<double>(), 100.0);
+  fs::remove_all(dir);
+}
+
+// Two interpenetrating spheres in one file: built (the carbon net is what the surface says), with the crossing of the
+// input and of the remesh reported, both in summary.json and as a warning naming the file.
+TEST(BuildCommand, ASurfacePassingThroughItselfIsReported) {
+  const fs::path dir = temp_dir("crossing");
+  TriMesh mesh = make_icosphere({10.0, 3});
+  test::append_copy(mesh, make_icosphere({10.0, 3}), Vec3(12.3, 0, 0));
+  save_mesh(mesh, dir / "crossing.off");
+  const std::string log = (dir / "log.txt").string();
+  const std::string command = std::string(CARBONMESH_CLI) + " -q build " + (dir / "crossing.off").string() +
+                              " -o " + (dir / "out").string() + " --atoms 1500 --no-report > /dev/null 2> " + log;
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  EXPECT_GT(s["input_self_intersections"]["pairs"].get<std::size_t>(), 0u);
+  EXPECT_GT(s["remeshed_mesh"]["self_intersections"]["pairs"].get<std::size_t>(), 0u);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("crossing.off: the surface passes through itself"), std::string::npos) << text;
+  EXPECT_NE(text.find("crossing.off: the remeshed surface passes through itself"), std::string::npos) << text;
   fs::remove_all(dir);
 }
 

@@ -1,7 +1,10 @@
 // Metrics: topology, valence statistics and the Hausdorff distance on meshes with known answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -12,6 +15,7 @@
 #include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/hausdorff.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/self_intersections.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "test_meshes.hpp"
 
@@ -296,4 +300,58 @@ TEST(Hausdorff, ShiftedCopyIsAtTheShift) {
   EXPECT_NEAR(hs.max, d, 0.02);
   EXPECT_GT(hs.rms, 0.3 * d);
   EXPECT_LT(hs.rms, d);
+}
+
+// Two spheres of radius 10 with centres 12.3 apart cross along a circle: every reported pair has a face of each; apart,
+// or alone, they do not cross. A third sphere deleted from the mesh is left out, and the face indices stay the mesh's.
+TEST(SelfIntersections, InterpenetratingSpheresCrossAndOnlyThere) {
+  const TriMesh sphere = make_icosphere({10.0, 3});
+  const int n = static_cast<int>(sphere.n_faces());
+  EXPECT_EQ(self_intersections(sphere).pairs, 0u);
+  TriMesh apart = sphere;
+  test::append_copy(apart, sphere, Vec3(20.5, 0, 0));
+  EXPECT_EQ(self_intersections(apart).pairs, 0u);
+  EXPECT_EQ(self_intersections(make_torus({10.0, 4.0, 0.0})).pairs, 0u);
+
+  TriMesh mesh = sphere;
+  test::append_copy(mesh, sphere, Vec3(0, 40, 0));   // faces n..2n-1, deleted below
+  test::append_copy(mesh, sphere, Vec3(12.3, 0, 0));  // faces 2n..3n-1: crosses the first
+  const SelfIntersections before = self_intersections(mesh);
+  for (int f = n; f < 2 * n; ++f) mesh.delete_face(TriMesh::FaceHandle(f), true);
+  const SelfIntersections s = self_intersections(mesh);
+  EXPECT_EQ(s.pairs, before.pairs);
+  EXPECT_GT(s.pairs, 0u);
+  EXPECT_LE(s.faces, 2 * s.pairs);
+  EXPECT_GE(s.faces, 2u);
+  EXPECT_LT(s.example[0], n);
+  EXPECT_GE(s.example[1], 2 * n);
+  // Both faces of the example reach the plane x = 6.15 where the spheres meet (their edges are about 1.6 long).
+  for (int f : s.example) {
+    double lo = 1e300, hi = -1e300;
+    for (auto v : mesh.fv_range(TriMesh::FaceHandle(f))) {
+      lo = std::min(lo, mesh.point(v)[0]);
+      hi = std::max(hi, mesh.point(v)[0]);
+    }
+    EXPECT_LE(lo, 6.15 + 1e-9) << f;
+    EXPECT_GE(hi, 6.15 - 1e-9) << f;
+  }
+  const nlohmann::json j = to_json(s);
+  EXPECT_EQ(j["pairs"], s.pairs);
+  EXPECT_EQ(j["example"][1], s.example[1]);
+  EXPECT_TRUE(to_json(SelfIntersections{})["example"].is_null());
+}
+
+// One vertex of a sphere pushed out through the opposite wall: its fan passes through the faces there.
+TEST(SelfIntersections, AVertexPushedThroughTheOppositeWall) {
+  TriMesh mesh = make_icosphere({10.0, 2});
+  const TriMesh::VertexHandle tip(0);
+  mesh.set_point(tip, -1.3 * mesh.point(tip));
+  const SelfIntersections s = self_intersections(mesh);
+  EXPECT_GT(s.pairs, 0u);
+  bool fan = false;
+  for (int f : s.example)
+    for (auto v : mesh.fv_range(TriMesh::FaceHandle(f))) fan = fan || v == tip;
+  EXPECT_TRUE(fan);
+  EXPECT_NE(to_text(s).find(std::to_string(s.pairs) + " face pairs"), std::string::npos) << to_text(s);
+  EXPECT_NE(to_text(mesh_stats(mesh)).find(to_text(s)), std::string::npos);
 }

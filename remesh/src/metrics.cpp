@@ -210,6 +210,7 @@ MeshStats mesh_stats(const TriMesh& mesh, const EdgeInterval& interval) {
   s.edges = edge_stats(mesh, interval);
   s.valence = valence_stats(mesh);
   s.angles = angle_stats(mesh);
+  s.self_intersections = self_intersections(mesh);
   return s;
 }
 
@@ -251,7 +252,8 @@ nlohmann::json to_json(const MeshStats& s) {
   return {{"topology", to_json(s.topology)},
           {"edges", to_json(s.edges, s.interval)},
           {"valence", to_json(s.valence)},
-          {"angles", {{"min_deg", s.angles.min_deg}, {"max_deg", s.angles.max_deg}}}};
+          {"angles", {{"min_deg", s.angles.min_deg}, {"max_deg", s.angles.max_deg}}},
+          {"self_intersections", to_json(s.self_intersections)}};
 }
 
 std::string to_text(const MeshStats& s) {
@@ -276,6 +278,7 @@ std::string to_text(const MeshStats& s) {
   out += fmt::format("regular {:.2f}%  Eval=0 {:.2f}%  Eval=1 {:.2f}%  Eval>1 {:.2f}%\n", v.percent_regular,
                      v.percent_eval0, v.percent_eval1, v.percent_eval_gt1);
   out += fmt::format("angle min {:.3f} deg  max {:.3f} deg\n", s.angles.min_deg, s.angles.max_deg);
+  out += to_text(s.self_intersections) + "\n";
   return out;
 }
 

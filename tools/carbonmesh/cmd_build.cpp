@@ -28,6 +28,7 @@
 #include "commands.hpp"
 #include "number_checks.hpp"
 #include "defect_report.hpp"
+#include "surface_checks.hpp"
 
 namespace carbonmesh::cli {
 namespace {
@@ -127,6 +128,8 @@ int run_build(BuildOptions& o) {
     source = o.in;
   }
   const Topology input_topology = topology(mesh);
+  const SelfIntersections input_crossings =
+      o.in.empty() ? SelfIntersections{} : check_input_self_intersections(mesh, source);
   clock.stop("load");
 
   // Scale.
@@ -215,6 +218,8 @@ int run_build(BuildOptions& o) {
                  remeshed.short_edges, scaled.emin, scaled.emax);
   mesh.garbage_collection();
   const MeshStats remeshed_stats = mesh_stats(mesh, EdgeInterval{scaled.emin, scaled.emax});
+  check_remesh_self_intersections(remeshed_stats.self_intersections, source,
+                                  (std::filesystem::path(o.out) / "remeshed.off").string());
   clock.stop("remesh");
 
   // Dual and its optimisation.
@@ -277,6 +282,7 @@ int run_build(BuildOptions& o) {
   summary["bond"] = o.bond;
   summary["scale"] = to_json(scaled);
   summary["input_topology"] = to_json(input_topology);
+  summary["input_self_intersections"] = to_json(input_crossings);
   summary["removed_components"] = to_json(debris);
   summary["genus"] = remeshed.after.genus;
   summary["borders"] = remeshed.after.boundary_loops;

@@ -18,6 +18,7 @@
 #include "carbonmesh/remesh/remesher.hpp"
 #include "commands.hpp"
 #include "number_checks.hpp"
+#include "surface_checks.hpp"
 
 namespace carbonmesh::cli {
 namespace {
@@ -99,6 +100,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
         spdlog::warn("{}: removed {} component{} with less area than four triangles of the interval ({:.4g}): {} "
                      "faces, area {:.4g} in all", opt->in, debris.removed, debris.removed == 1 ? "" : "s",
                      smallest_surface, debris.faces, debris.area);
+      const SelfIntersections input_crossings = check_input_self_intersections(mesh, opt->in);
       RemeshSettings settings;
       settings.emin = opt->emin;
       settings.emax = opt->emax;
@@ -131,6 +133,9 @@ void add_remesh_command(CLI::App& app, Action& action) {
         throw InputError(opt->in + ": " + e.what());
       }
       save_mesh(mesh, opt->out);
+      mesh.garbage_collection();  // the face indices of the file written
+      const SelfIntersections crossings =
+          check_remesh_self_intersections(self_intersections(mesh), opt->in, opt->out);
       if (!opt->log.empty())
         write_atomically(opt->log, [&csv](const std::filesystem::path& tmp) {
           std::ofstream file(tmp);
@@ -150,6 +155,8 @@ void add_remesh_command(CLI::App& app, Action& action) {
         j["emax"] = opt->emax;
         j["snap_tolerance"] = opt->snap_tolerance;
         j["removed_components"] = to_json(debris);
+        j["input_self_intersections"] = to_json(input_crossings);
+        j["self_intersections"] = to_json(crossings);
         std::cout << j.dump(2) << "\n";
       } else {
         std::cout << fmt::format(

@@ -22,7 +22,7 @@ void add_stats_command(CLI::App& app, Action& action) {
     std::size_t samples = 200000;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("stats", "mesh metrics: topology, edge lengths, valence, angles, Hausdorff");
+  auto* cmd = app.add_subcommand("stats", "mesh metrics: topology, edge lengths, valence, angles, self-intersections, Hausdorff");
   cmd->add_option("mesh", opt->mesh, "input mesh (.off .obj .ply .stl)")->required();
   cmd->add_option("--emin", opt->emin, "lower bound of the edge interval, mesh units (edges shorter are 'short'; default: none, no interval counts)");
   cmd->add_option("--emax", opt->emax, "upper bound of the edge interval, mesh units (edges longer are 'long'; default: none)");

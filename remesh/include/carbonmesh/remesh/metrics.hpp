@@ -9,6 +9,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "carbonmesh/remesh/mesh.hpp"
+#include "carbonmesh/remesh/self_intersections.hpp"
 
 namespace carbonmesh {
 
@@ -69,6 +70,7 @@ struct MeshStats {
   EdgeStats edges;
   ValenceStats valence;
   AngleStats angles;
+  SelfIntersections self_intersections;
 };
 MeshStats mesh_stats(const TriMesh& mesh, const EdgeInterval& interval = {});
 
