@@ -5,8 +5,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <vector>
 #include <array>
 
 #include "carbonmesh/remesh/error.hpp"
@@ -153,6 +156,12 @@ INSTANTIATE_TEST_SUITE_P(
         // computed twice): an unwelded crack, not two borders lying on each other.
         BadInput{"unwelded_seam.off", off("0 0 0\n1 0 0\n0 1 0\n1 1 0\n1e-15 1 0\n", "3 0 1 2\n3 1 3 4\n", 5, 2),
                  "closer than"},
+        // Two unit squares side by side; the right one has a vertex at the middle of the edge they share, which the
+        // left one's triangle spans without it: a T-junction crack along the edge.
+        BadInput{"t_junction.off",
+                 off("0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n1 0.5 0\n",
+                     "3 0 1 2\n3 0 2 3\n3 1 4 6\n3 6 4 5\n3 6 5 2\n", 7, 5),
+                 "T-junction"},
         BadInput{"flipped.off", off("0 0 0\n1 0 0\n0 1 0\n1 1 0\n", "3 0 1 2\n3 1 2 3\n", 4, 2),
                  "inconsistent orientation"},
         BadInput{"unknown.xyz", "1 2 3\n", "unsupported format"},
@@ -225,8 +234,88 @@ TEST(MeshIO, RepairWeldsNearlyCoincidentVertices) {
   LoadReport gap_report;
   const TriMesh apart = load_mesh(gap, {}, &gap_report);
   EXPECT_EQ(gap_report.near_duplicate_vertices, 0u);
+  EXPECT_EQ(gap_report.t_junctions, 0u);
   EXPECT_EQ(apart.n_vertices(), 6u);
   EXPECT_EQ(topology(apart).components, 2u);
+}
+
+// A box of side 10 whose top is a 4 x 4 grid and every other side a 3 x 3 grid, its vertices shared where they
+// coincide: along the top's rim the top's vertices lie inside the sides' edges and the sides' inside the top's, 5
+// vertices on each of 4 edges. Refused; --repair splits the faces there and the box is closed, and loads again as
+// it is.
+TEST(MeshIO, RepairSplitsTJunctions) {
+  std::vector<std::array<double, 3>> points;
+  std::map<std::array<double, 3>, int> index;
+  std::string faces;
+  int count = 0;
+  auto at = [&](const std::array<double, 3>& p) {
+    const auto [it, inserted] = index.emplace(p, static_cast<int>(points.size()));
+    if (inserted) points.push_back(p);
+    return it->second;
+  };
+  using V = std::array<double, 3>;
+  const std::array<std::tuple<V, V, V, int>, 6> sides{{{{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, 3},
+                                                        {{0, 0, 10}, {1, 0, 0}, {0, 1, 0}, 4},
+                                                        {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 3},
+                                                        {{0, 10, 0}, {0, 0, 1}, {1, 0, 0}, 3},
+                                                        {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 3},
+                                                        {{10, 0, 0}, {0, 1, 0}, {0, 0, 1}, 3}}};
+  for (const auto& [o, u, v, n] : sides) {
+    auto grid = [&, o = o, u = u, v = v, n = n](int i, int j) {
+      V p{};
+      for (std::size_t c = 0; c < 3; ++c) p[c] = o[c] + 10.0 * (i / double(n)) * u[c] + 10.0 * (j / double(n)) * v[c];
+      return at(p);
+    };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const int a = grid(i, j), b = grid(i + 1, j), c = grid(i + 1, j + 1), d = grid(i, j + 1);
+        faces += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n";
+        faces += "3 " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+        count += 2;
+      }
+  }
+  std::ostringstream vertices;
+  vertices.precision(17);
+  for (const auto& p : points) vertices << p[0] << " " << p[1] << " " << p[2] << "\n";
+  const auto path = write_file("t_box.off", off(vertices.str(), faces, static_cast<int>(points.size()), count));
+  EXPECT_THROW(load_mesh(path), InputError);
+  LoadSettings settings;
+  settings.repair = true;
+  LoadReport report;
+  const TriMesh mesh = load_mesh(path, settings, &report);
+  EXPECT_EQ(report.t_junctions, 20u);
+  EXPECT_EQ(report.near_duplicate_vertices, 0u);
+  EXPECT_TRUE(report.repaired);
+  EXPECT_EQ(mesh.n_vertices(), points.size());  // no vertex added: every split face had one edge split
+  const Topology t = topology(mesh);
+  EXPECT_EQ(t.boundary_loops, 0u);
+  EXPECT_EQ(t.components, 1u);
+  EXPECT_EQ(t.genus, 0);
+  EXPECT_NEAR(surface_area(mesh), 600.0, 1e-9);
+  const auto repaired = temp_dir() / "t_box_repaired.off";
+  save_mesh(mesh, repaired);
+  LoadReport again;
+  EXPECT_NO_THROW(load_mesh(repaired, {}, &again));
+  EXPECT_EQ(again.t_junctions, 0u);
+}
+
+// A triangle whose neighbours below and to the left have a vertex at the middle of its two edges there: split from a
+// new vertex at its centroid into five triangles, with the area and the orientation kept.
+TEST(MeshIO, RepairSplitsAFaceWithVerticesInsideTwoEdgesAtItsCentroid) {
+  const auto path = write_file("t_two_edges.off",
+                               off("0 0 0\n2 0 0\n0 2 0\n1 0 0\n1 -1 0\n0 1 0\n-1 1 0\n",
+                                   "3 0 1 2\n3 0 4 3\n3 3 4 1\n3 0 5 6\n3 5 2 6\n", 7, 5));
+  EXPECT_THROW(load_mesh(path), InputError);
+  LoadSettings settings;
+  settings.repair = true;
+  LoadReport report;
+  const TriMesh mesh = load_mesh(path, settings, &report);
+  EXPECT_EQ(report.t_junctions, 2u);
+  EXPECT_EQ(mesh.n_vertices(), 8u);
+  EXPECT_EQ(mesh.n_faces(), 9u);
+  EXPECT_EQ(topology(mesh).boundary_loops, 1u);
+  EXPECT_NEAR(surface_area(mesh), 4.0, 1e-12);
+  for (auto f : mesh.faces()) EXPECT_GT(mesh.normal(f)[2], 0.0) << f.idx();  // every face still faces +z
 }
 
 TEST(Cli, BadOptionIsAnErrorWithAHint) {

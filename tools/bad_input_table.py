@@ -129,6 +129,29 @@ def build_corpus(c):
     seam = c.write("unwelded_seam.off", off_text(seam_v, seam_f))
     c.add("unwelded seam (corners 1.2e-15 apart)", ["stats", seam])
     c.add("unwelded seam, `--repair`", ["stats", "--repair", seam])
+    # A box of side 10 whose top is a 4 x 4 grid and whose other sides are 3 x 3 grids, vertices shared where they
+    # coincide: along the top's rim each side's vertices lie inside the other's edges (T-junctions), a crack that
+    # welding cannot close.
+    box_points, box_index, box_faces = [], {}, []
+
+    def box_vertex(p):
+        if p not in box_index:
+            box_index[p] = len(box_points)
+            box_points.append(p)
+        return box_index[p]
+    for o, u, v, n in [((0, 0, 0), (0, 1, 0), (1, 0, 0), 3), ((0, 0, 10), (1, 0, 0), (0, 1, 0), 4),
+                       ((0, 0, 0), (1, 0, 0), (0, 0, 1), 3), ((0, 10, 0), (0, 0, 1), (1, 0, 0), 3),
+                       ((0, 0, 0), (0, 0, 1), (0, 1, 0), 3), ((10, 0, 0), (0, 1, 0), (0, 0, 1), 3)]:
+        def grid(i, j):
+            return box_vertex(tuple(o[k] + 10 * (i / n) * u[k] + 10 * (j / n) * v[k] for k in range(3)))
+        for i in range(n):
+            for j in range(n):
+                box_faces += [(grid(i, j), grid(i + 1, j), grid(i + 1, j + 1)),
+                              (grid(i, j), grid(i + 1, j + 1), grid(i, j + 1))]
+    t_box = c.write("t_junction_box.off", off_text(box_points, box_faces))
+    c.add("T-junction crack (a box: 4 x 4 top, 3 x 3 sides)", ["stats", t_box])
+    c.add("T-junction crack, `--repair`", ["build", "--repair", t_box, "-o", p("t_box_build"), "--atoms", "1500",
+                                           "--no-report"], check=("build", p("t_box_build"), None))
     c.add("non-manifold edge (three faces)",
           ["stats", c.write("nonmanifold_edge.off", off_text(TETRA_V + [(1, 1, 1)], TETRA_F + [(0, 1, 4)]))])
     # Two tetrahedra sharing one vertex: a closed surface pinched at vertex 0.

@@ -19,6 +19,7 @@
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "binary_formats.hpp"
+#include "t_junctions.hpp"
 #include "text_formats.hpp"
 
 namespace carbonmesh {
@@ -215,14 +216,15 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
     throw InputError(source + ": " + std::to_string(report.duplicate_vertices) +
                      " duplicate vertices (e.g. vertices " + std::to_string(dup_example_a) + " and " +
                      std::to_string(dup_example_b) + " share a position); use --repair to merge them");
+  // Nearly coincident vertices, and vertices inside border edges (T-junctions, below): within 4 float roundings of
+  // the largest coordinate (a file's float coordinates computed twice differ by about that), far below any length the
+  // remesh works at.
+  double largest = 0;
+  for (std::size_t i = 0; i < soup.points.size(); ++i)
+    if (referenced[i])
+      for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(soup.points[i][c]));
+  const double tolerance = 4.0 * std::numeric_limits<float>::epsilon() * largest;
   {
-    // Nearly coincident vertices: within 4 float roundings of the largest coordinate (a file's float coordinates
-    // computed twice differ by about that), far below any length the remesh works at.
-    double largest = 0;
-    for (std::size_t i = 0; i < soup.points.size(); ++i)
-      if (referenced[i])
-        for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(soup.points[i][c]));
-    const double tolerance = 4.0 * std::numeric_limits<float>::epsilon() * largest;
     const NearDuplicates near = near_duplicate_vertices(soup.points, referenced, tolerance, remap);
     report.near_duplicate_vertices = near.count;
     for (auto& r : remap) r = remap[static_cast<std::size_t>(r)];  // exact duplicates of a merged vertex follow it
@@ -269,24 +271,58 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
   }
   if (kept.empty()) throw InputError(source + ": no faces left (all are degenerate)");
 
-  // Edge manifoldness and orientation, before OpenMesh sees the faces.
-  std::map<std::pair<int, int>, std::array<int, 3>> edge_use;  // (min,max) -> {count, first dir, first face}
-  for (std::size_t f = 0; f < kept.size(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = kept[f][static_cast<std::size_t>(k)], b = kept[f][static_cast<std::size_t>((k + 1) % 3)];
-      const auto key = std::minmax(a, b);
-      const int dir = a < b ? 1 : -1;
-      auto [it, inserted] = edge_use.emplace(std::pair<int, int>(key.first, key.second),
-                                             std::array<int, 3>{0, dir, static_cast<int>(f)});
-      auto& use = it->second;
-      ++use[0];
-      if (use[0] > 2)
-        throw InputError(source + ": non-manifold edge between vertices " + std::to_string(key.first) +
-                         " and " + std::to_string(key.second) + " (shared by more than two faces)");
-      if (!inserted && use[1] == dir)
-        throw InputError(source + ": inconsistent orientation between faces " + std::to_string(use[2]) +
-                         " and " + std::to_string(f) + " at the edge between vertices " +
-                         std::to_string(key.first) + " and " + std::to_string(key.second));
+  // Edge manifoldness and orientation, before OpenMesh sees the faces. Returns the border edges, (face, corner k) for
+  // the edge from corner k to corner k + 1, in the order of their ends.
+  auto check_edges = [&source](const std::vector<std::array<int, 3>>& faces) {
+    std::map<std::pair<int, int>, std::array<int, 3>> edge_use;  // (min,max) -> {count, first dir, first face}
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = faces[f][static_cast<std::size_t>(k)], b = faces[f][static_cast<std::size_t>((k + 1) % 3)];
+        const auto key = std::minmax(a, b);
+        const int dir = a < b ? 1 : -1;
+        auto [it, inserted] = edge_use.emplace(std::pair<int, int>(key.first, key.second),
+                                               std::array<int, 3>{0, dir, static_cast<int>(f)});
+        auto& use = it->second;
+        ++use[0];
+        if (use[0] > 2)
+          throw InputError(source + ": non-manifold edge between vertices " + std::to_string(key.first) +
+                           " and " + std::to_string(key.second) + " (shared by more than two faces)");
+        if (!inserted && use[1] == dir)
+          throw InputError(source + ": inconsistent orientation between faces " + std::to_string(use[2]) +
+                           " and " + std::to_string(f) + " at the edge between vertices " +
+                           std::to_string(key.first) + " and " + std::to_string(key.second));
+      }
+    }
+    std::vector<std::pair<int, int>> border;
+    for (const auto& [key, use] : edge_use) {
+      if (use[0] != 1) continue;
+      const auto& t = faces[static_cast<std::size_t>(use[2])];
+      const int from = use[1] == 1 ? key.first : key.second;
+      border.emplace_back(use[2], static_cast<int>(std::find(t.begin(), t.end(), from) - t.begin()));
+    }
+    return border;
+  };
+  const std::vector<std::pair<int, int>> border = check_edges(kept);
+
+  // T-junctions: border vertices inside other border edges (t_junctions.hpp), a crack that welding cannot close;
+  // --repair splits the faces there, so the two sides share their vertices.
+  const std::vector<Vec3>* points = &soup.points;
+  std::vector<Vec3> split_points;
+  {
+    const TJunctions junctions = find_t_junctions(soup.points, kept, border, tolerance);
+    report.t_junctions = junctions.vertices;
+    if (junctions.vertices > 0 && !settings.repair)
+      throw InputError(fmt::format("{}: {} border {} inside another border edge (e.g. vertex {}, {:.3g} from the edge "
+                                   "between vertices {} and {}): a T-junction crack, two sides of a seam that do not "
+                                   "share their vertices; use --repair to split the edges there",
+                                   source, junctions.vertices, junctions.vertices == 1 ? "vertex lies" : "vertices lie",
+                                   junctions.example[0], junctions.example_distance, junctions.example[1],
+                                   junctions.example[2]));
+    if (junctions.vertices > 0) {
+      split_points = soup.points;
+      kept = split_at_t_junctions(split_points, kept, junctions);
+      points = &split_points;
+      check_edges(kept);
     }
   }
 
@@ -294,7 +330,7 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
   // fails for a vertex where two closed fans meet). With manifold, consistently oriented edges the link of a
   // vertex (the edges opposite it) is a union of paths and cycles; a manifold vertex has exactly one.
   {
-    std::vector<std::vector<std::pair<int, int>>> link(soup.points.size());
+    std::vector<std::vector<std::pair<int, int>>> link(points->size());
     for (const auto& t : kept)
       for (std::size_t k = 0; k < 3; ++k)
         link[static_cast<std::size_t>(t[k])].emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
@@ -327,16 +363,16 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
   }
 
   // Build the half-edge mesh; vertices no kept face uses are dropped.
-  std::vector<char> used(soup.points.size(), 0);
+  std::vector<char> used(points->size(), 0);
   for (const auto& t : kept)
     for (int v : t) used[static_cast<std::size_t>(v)] = 1;
   TriMesh mesh;
-  std::vector<TriMesh::VertexHandle> handle(soup.points.size());
+  std::vector<TriMesh::VertexHandle> handle(points->size());
   std::vector<int> original_index;
-  for (int i = 0; i < n_points; ++i) {
-    if (!used[static_cast<std::size_t>(i)]) continue;
-    handle[static_cast<std::size_t>(i)] = mesh.add_vertex(soup.points[static_cast<std::size_t>(i)]);
-    original_index.push_back(i);
+  for (std::size_t i = 0; i < points->size(); ++i) {
+    if (!used[i]) continue;
+    handle[i] = mesh.add_vertex((*points)[i]);
+    original_index.push_back(static_cast<int>(i));
   }
   for (const auto& t : kept) {
     const auto fh = mesh.add_face(handle[static_cast<std::size_t>(t[0])], handle[static_cast<std::size_t>(t[1])],
@@ -355,17 +391,20 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
   mesh.update_normals();
 
   report.repaired = settings.repair && (report.duplicate_vertices + report.near_duplicate_vertices +
-                                        report.degenerate_faces + report.duplicate_faces) > 0;
+                                        report.t_junctions + report.degenerate_faces + report.duplicate_faces) > 0;
   if (report.triangulated_polygons > 0)
     spdlog::info("{}: triangulated {} polygons with more than three corners", source,
                  report.triangulated_polygons);
   if (report.unreferenced_vertices > 0)
     spdlog::warn("{}: removed {} vertices used by no face", source, report.unreferenced_vertices);
   if (report.repaired)
-    spdlog::warn("{}: repaired: merged {} duplicate and {} nearly coincident vertices, removed {} degenerate and {} "
+    spdlog::warn("{}: repaired: merged {} duplicate and {} nearly coincident vertices, {}removed {} degenerate and {} "
                  "duplicate faces",
-                 source, report.duplicate_vertices, report.near_duplicate_vertices, report.degenerate_faces,
-                 report.duplicate_faces);
+                 source, report.duplicate_vertices, report.near_duplicate_vertices,
+                 report.t_junctions > 0
+                     ? fmt::format("split the faces at {} T-junction vertices, ", report.t_junctions)
+                     : std::string(),
+                 report.degenerate_faces, report.duplicate_faces);
   if (report_out) *report_out = report;
   return mesh;
 }

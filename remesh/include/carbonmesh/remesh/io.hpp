@@ -16,7 +16,9 @@ struct PolygonSoup {
 };
 
 struct LoadSettings {
-  bool repair = false;  // merge duplicate vertices, drop degenerate and duplicate faces instead of failing
+  // Merge duplicate and nearly coincident vertices, split faces at T-junctions, drop degenerate and duplicate faces
+  // instead of failing.
+  bool repair = false;
 };
 
 // What loading found and did; every count is also logged.
@@ -27,6 +29,7 @@ struct LoadReport {
   std::size_t unreferenced_vertices = 0;  // removed
   std::size_t duplicate_vertices = 0;     // vertices at the same position as an earlier one
   std::size_t near_duplicate_vertices = 0;  // others within 4 float roundings of the largest coordinate of one
+  std::size_t t_junctions = 0;  // border vertices inside another border edge (within the same tolerance)
   std::size_t degenerate_faces = 0;       // zero area or a repeated corner
   std::size_t duplicate_faces = 0;        // same corner set as an earlier face
   bool repaired = false;
@@ -38,8 +41,8 @@ PolygonSoup read_polygon_soup(const std::filesystem::path& file);
 
 // Validates a soup and builds the half-edge mesh. `source` names the input in error messages.
 // Throws InputError (NaN/Inf coordinates, out-of-range indices, no faces, non-manifold edges or vertices,
-// inconsistent orientation, and -- unless settings.repair -- duplicate or nearly coincident vertices and degenerate
-// faces).
+// inconsistent orientation, and -- unless settings.repair -- duplicate or nearly coincident vertices, T-junctions
+// and degenerate faces).
 TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const LoadSettings& settings = {},
                    LoadReport* report = nullptr);
 
