@@ -1,6 +1,7 @@
 // Mesh IO: round trips of every format and validation of bad input (message and exit code 2).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -316,6 +317,69 @@ TEST(MeshIO, RepairSplitsAFaceWithVerticesInsideTwoEdgesAtItsCentroid) {
   EXPECT_EQ(topology(mesh).boundary_loops, 1u);
   EXPECT_NEAR(surface_area(mesh), 4.0, 1e-12);
   for (auto f : mesh.faces()) EXPECT_GT(mesh.normal(f)[2], 0.0) << f.idx();  // every face still faces +z
+}
+
+// Faces that disagree with their neighbours: --repair turns them, and each component keeps the orientation most of its
+// faces had (here outward, even with the first face among the turned ones).
+TEST(MeshIO, RepairOrientsFacesAlikeKeepingTheMajority) {
+  const auto tetra = write_file("tetra_flipped.off", off(kTetraVertices, "3 0 2 1\n3 0 1 3\n3 3 2 1\n3 0 3 2\n", 4, 4));
+  EXPECT_THROW(load_mesh(tetra), InputError);
+  LoadSettings settings;
+  settings.repair = true;
+  LoadReport report;
+  const TriMesh turned = load_mesh(tetra, settings, &report);
+  EXPECT_EQ(report.reversed_faces, 1u);
+  EXPECT_EQ(report.split_vertices, 0u);
+  EXPECT_EQ(topology(turned).boundary_loops, 0u);
+  EXPECT_EQ(topology(turned).genus, 0);
+  const Vec3 centre(0.25, 0.25, 0.25);
+  for (auto f : turned.faces())
+    EXPECT_GT(OpenMesh::dot(turned.normal(f), turned.calc_face_centroid(f) - centre), 0.0) << f.idx();
+
+  const TriMesh sphere = make_icosphere({10.0, 1});
+  std::ostringstream vertices, faces;
+  vertices.precision(17);
+  for (auto v : sphere.vertices())
+    vertices << sphere.point(v)[0] << " " << sphere.point(v)[1] << " " << sphere.point(v)[2] << "\n";
+  for (auto f : sphere.faces()) {
+    std::vector<int> corners;
+    for (auto v : sphere.fv_range(f)) corners.push_back(v.idx());
+    if (f.idx() == 0 || f.idx() == 7 || f.idx() == 40) std::swap(corners[1], corners[2]);
+    faces << "3 " << corners[0] << " " << corners[1] << " " << corners[2] << "\n";
+  }
+  const auto path = write_file("sphere_flipped.off", off(vertices.str(), faces.str(),
+                                                         static_cast<int>(sphere.n_vertices()),
+                                                         static_cast<int>(sphere.n_faces())));
+  LoadReport sphere_report;
+  const TriMesh mesh = load_mesh(path, settings, &sphere_report);
+  EXPECT_EQ(sphere_report.reversed_faces, 3u);
+  EXPECT_EQ(mesh.n_faces(), sphere.n_faces());
+  for (auto f : mesh.faces()) EXPECT_GT(OpenMesh::dot(mesh.normal(f), mesh.calc_face_centroid(f)), 0.0) << f.idx();
+}
+
+// Two closed tetrahedra sharing one vertex (pinched) and a tetrahedron with a fin on one of its edges (an edge of three
+// faces): refused, and with --repair the vertices there are split, so each part loads on its own.
+TEST(MeshIO, RepairSplitsNonManifoldVerticesAndEdges) {
+  const auto pinched = write_file("pinched_repair.off", off(kTetraVertices + "-1 0 0\n0 -1 0\n0 0 -1\n",
+                                                           kTetraFaces + "3 0 4 5\n3 0 6 4\n3 4 6 5\n3 0 5 6\n", 7, 8));
+  EXPECT_THROW(load_mesh(pinched), InputError);
+  LoadSettings settings;
+  settings.repair = true;
+  LoadReport report;
+  const TriMesh two = load_mesh(pinched, settings, &report);
+  EXPECT_EQ(report.split_vertices, 1u);
+  EXPECT_EQ(report.reversed_faces, 0u);
+  EXPECT_EQ(two.n_vertices(), 8u);
+  EXPECT_EQ(topology(two).components, 2u);
+  EXPECT_EQ(topology(two).boundary_loops, 0u);
+
+  const auto fin = write_file("fin_repair.off", off(kTetraVertices + "1 1 1\n", kTetraFaces + "3 0 1 4\n", 5, 5));
+  EXPECT_THROW(load_mesh(fin), InputError);
+  LoadReport fin_report;
+  const TriMesh cut = load_mesh(fin, settings, &fin_report);
+  EXPECT_GE(fin_report.split_vertices, 2u);  // the two ends of the edge, for the faces cut off there
+  EXPECT_EQ(cut.n_faces(), 5u);
+  EXPECT_NEAR(surface_area(cut), 0.5 * 3 + std::sqrt(3.0) / 2 + std::sqrt(2.0) / 2, 1e-12);
 }
 
 TEST(Cli, BadOptionIsAnErrorWithAHint) {

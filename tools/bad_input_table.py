@@ -152,15 +152,18 @@ def build_corpus(c):
     c.add("T-junction crack (a box: 4 x 4 top, 3 x 3 sides)", ["stats", t_box])
     c.add("T-junction crack, `--repair`", ["build", "--repair", t_box, "-o", p("t_box_build"), "--atoms", "1500",
                                            "--no-report"], check=("build", p("t_box_build"), None))
-    c.add("non-manifold edge (three faces)",
-          ["stats", c.write("nonmanifold_edge.off", off_text(TETRA_V + [(1, 1, 1)], TETRA_F + [(0, 1, 4)]))])
+    fin = c.write("nonmanifold_edge.off", off_text(TETRA_V + [(1, 1, 1)], TETRA_F + [(0, 1, 4)]))
+    c.add("non-manifold edge (three faces)", ["stats", fin])
+    c.add("non-manifold edge, `--repair`", ["stats", "--repair", fin])
     # Two tetrahedra sharing one vertex: a closed surface pinched at vertex 0.
     second = [(0, 0, 0), (-1, 0, 0), (0, -1, 0), (0, 0, -1)]
-    c.add("pinched (non-manifold) vertex",
-          ["stats", c.write("pinched.off", off_text(TETRA_V + second[1:],
-                                                    TETRA_F + [(0, 4, 5), (0, 6, 4), (4, 6, 5), (0, 5, 6)]))])
-    c.add("flipped orientation between neighbours",
-          ["stats", c.write("flipped.off", off_text(TETRA_V, TETRA_F[:3] + [(0, 2, 3)]))])
+    pinched = c.write("pinched.off", off_text(TETRA_V + second[1:],
+                                              TETRA_F + [(0, 4, 5), (0, 6, 4), (4, 6, 5), (0, 5, 6)]))
+    c.add("pinched (non-manifold) vertex", ["stats", pinched])
+    c.add("pinched vertex, `--repair`", ["stats", "--repair", pinched])
+    flipped = c.write("flipped.off", off_text(TETRA_V, TETRA_F[:3] + [(0, 2, 3)]))
+    c.add("flipped orientation between neighbours", ["stats", flipped])
+    c.add("flipped orientation, `--repair`", ["stats", "--repair", flipped])
     # Coordinates spanning 1e-9 to 1e9 in one tetrahedron: faces far thinner than they are long.
     c.add("coordinates 1e-9 and 1e9 in one mesh",
           ["stats", c.write("mixed_range.off", off_text([(0.0, 0.0, 0.0), (1e-9, 0.0, 0.0), (0.0, 1e9, 0.0),

@@ -19,6 +19,7 @@
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "binary_formats.hpp"
+#include "orient_soup.hpp"
 #include "t_junctions.hpp"
 #include "text_formats.hpp"
 
@@ -286,11 +287,13 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
         ++use[0];
         if (use[0] > 2)
           throw InputError(source + ": non-manifold edge between vertices " + std::to_string(key.first) +
-                           " and " + std::to_string(key.second) + " (shared by more than two faces)");
+                           " and " + std::to_string(key.second) +
+                           " (shared by more than two faces); use --repair to cut the surface open there");
         if (!inserted && use[1] == dir)
           throw InputError(source + ": inconsistent orientation between faces " + std::to_string(use[2]) +
                            " and " + std::to_string(f) + " at the edge between vertices " +
-                           std::to_string(key.first) + " and " + std::to_string(key.second));
+                           std::to_string(key.first) + " and " + std::to_string(key.second) +
+                           "; use --repair to orient the faces alike");
       }
     }
     std::vector<std::pair<int, int>> border;
@@ -302,36 +305,12 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
     }
     return border;
   };
-  const std::vector<std::pair<int, int>> border = check_edges(kept);
-
-  // T-junctions: border vertices inside other border edges (t_junctions.hpp), a crack that welding cannot close;
-  // --repair splits the faces there, so the two sides share their vertices.
-  const std::vector<Vec3>* points = &soup.points;
-  std::vector<Vec3> split_points;
-  {
-    const TJunctions junctions = find_t_junctions(soup.points, kept, border, tolerance);
-    report.t_junctions = junctions.vertices;
-    if (junctions.vertices > 0 && !settings.repair)
-      throw InputError(fmt::format("{}: {} border {} inside another border edge (e.g. vertex {}, {:.3g} from the edge "
-                                   "between vertices {} and {}): a T-junction crack, two sides of a seam that do not "
-                                   "share their vertices; use --repair to split the edges there",
-                                   source, junctions.vertices, junctions.vertices == 1 ? "vertex lies" : "vertices lie",
-                                   junctions.example[0], junctions.example_distance, junctions.example[1],
-                                   junctions.example[2]));
-    if (junctions.vertices > 0) {
-      split_points = soup.points;
-      kept = split_at_t_junctions(split_points, kept, junctions);
-      points = &split_points;
-      check_edges(kept);
-    }
-  }
-
   // Vertex manifoldness, before OpenMesh sees the faces (its add_face prints "complex vertex" to stderr and
   // fails for a vertex where two closed fans meet). With manifold, consistently oriented edges the link of a
   // vertex (the edges opposite it) is a union of paths and cycles; a manifold vertex has exactly one.
-  {
-    std::vector<std::vector<std::pair<int, int>>> link(points->size());
-    for (const auto& t : kept)
+  auto check_vertices = [&source](const std::vector<std::array<int, 3>>& faces, std::size_t n) {
+    std::vector<std::vector<std::pair<int, int>>> link(n);
+    for (const auto& t : faces)
       for (std::size_t k = 0; k < 3; ++k)
         link[static_cast<std::size_t>(t[k])].emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
     std::vector<int> labels, parent;
@@ -358,9 +337,58 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
       }
       if (fans > 1)
         throw InputError(source + ": non-manifold (pinched) vertex " + std::to_string(v) + " (" +
-                         std::to_string(fans) + " fans of faces meet there)");
+                         std::to_string(fans) + " fans of faces meet there); use --repair to split it");
+    }
+  };
+
+  // With --repair, faces that disagree in orientation and edges and vertices where the surface is not a disk: the faces
+  // oriented alike and those vertices duplicated (orient_soup.hpp). Only where the checks find such a place: edges
+  // before the T-junctions (whose search needs the border), vertices after them (a T-junction crack pinches the
+  // vertices at its ends, which its repair mends).
+  const std::vector<Vec3>* points = &soup.points;
+  std::vector<Vec3> owned_points;  // the soup's points and those the repairs add
+  auto own_points = [&] {
+    if (points != &owned_points) owned_points = soup.points;
+    points = &owned_points;
+  };
+  // `check()`'s result; with --repair, if it fails, the soup is oriented and it is checked again.
+  auto repaired_where = [&](const auto& check) {
+    if (settings.repair) {
+      try {
+        return check();
+      } catch (const InputError&) {
+        own_points();
+        const OrientedSoup oriented = orient_soup(owned_points, kept);
+        report.reversed_faces += oriented.reversed_faces;
+        report.split_vertices += oriented.duplicated_vertices;
+      }
+    }
+    return check();
+  };
+  const std::vector<std::pair<int, int>> border = repaired_where([&] { return check_edges(kept); });
+
+  // T-junctions: border vertices inside other border edges (t_junctions.hpp), a crack that welding cannot close;
+  // --repair splits the faces there, so the two sides share their vertices.
+  {
+    const TJunctions junctions = find_t_junctions(*points, kept, border, tolerance);
+    report.t_junctions = junctions.vertices;
+    if (junctions.vertices > 0 && !settings.repair)
+      throw InputError(fmt::format("{}: {} border {} inside another border edge (e.g. vertex {}, {:.3g} from the edge "
+                                   "between vertices {} and {}): a T-junction crack, two sides of a seam that do not "
+                                   "share their vertices; use --repair to split the edges there",
+                                   source, junctions.vertices, junctions.vertices == 1 ? "vertex lies" : "vertices lie",
+                                   junctions.example[0], junctions.example_distance, junctions.example[1],
+                                   junctions.example[2]));
+    if (junctions.vertices > 0) {
+      own_points();
+      kept = split_at_t_junctions(owned_points, kept, junctions);
+      check_edges(kept);
     }
   }
+  repaired_where([&] {
+    check_vertices(kept, points->size());
+    return 0;
+  });
 
   // Build the half-edge mesh; vertices no kept face uses are dropped.
   std::vector<char> used(points->size(), 0);
@@ -391,7 +419,8 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
   mesh.update_normals();
 
   report.repaired = settings.repair && (report.duplicate_vertices + report.near_duplicate_vertices +
-                                        report.t_junctions + report.degenerate_faces + report.duplicate_faces) > 0;
+                                        report.reversed_faces + report.split_vertices + report.t_junctions +
+                                        report.degenerate_faces + report.duplicate_faces) > 0;
   if (report.triangulated_polygons > 0)
     spdlog::info("{}: triangulated {} polygons with more than three corners", source,
                  report.triangulated_polygons);
@@ -401,9 +430,17 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
     spdlog::warn("{}: repaired: merged {} duplicate and {} nearly coincident vertices, {}removed {} degenerate and {} "
                  "duplicate faces",
                  source, report.duplicate_vertices, report.near_duplicate_vertices,
-                 report.t_junctions > 0
-                     ? fmt::format("split the faces at {} T-junction vertices, ", report.t_junctions)
-                     : std::string(),
+                 (report.reversed_faces > 0
+                      ? fmt::format("reversed {} face{} to orient the faces alike, ", report.reversed_faces,
+                                    report.reversed_faces == 1 ? "" : "s")
+                      : std::string()) +
+                     (report.split_vertices > 0
+                          ? fmt::format("split {} {} where the surface was not a disk (non-manifold), ",
+                                        report.split_vertices, report.split_vertices == 1 ? "vertex" : "vertices")
+                          : std::string()) +
+                     (report.t_junctions > 0
+                          ? fmt::format("split the faces at {} T-junction vertices, ", report.t_junctions)
+                          : std::string()),
                  report.degenerate_faces, report.duplicate_faces);
   if (report_out) *report_out = report;
   return mesh;

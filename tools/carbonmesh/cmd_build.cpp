@@ -403,7 +403,7 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_flag("--passivate", opt->passivate, "hydrogen on two-coordinated border carbons (C-H 1.09 A)");
   cmd->add_flag("--topology", opt->topology, "also write structure-full.data: atom_style full with Bonds and Angles (other force fields)");
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
-  cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, split faces at T-junctions, drop degenerate/duplicate faces");
+  cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, orient faces alike, split non-manifold edges and vertices and faces at T-junctions, drop degenerate/duplicate faces");
   cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(non_negative_number());
   cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str();
   cmd->add_option("--np", opt->np, "deck: MPI ranks in the mpirun comment line (count)")->capture_default_str()

@@ -75,7 +75,7 @@ void add_remesh_command(CLI::App& app, Action& action) {
   cmd->add_flag("--no-flips", opt->no_flips, "skip flipping edges whose faces bridge a groove or cut a ridge of the input where the other diagonal follows it, also those whose other diagonal needs the vertices around relaxed (default: flip)");
   cmd->add_option("--log", opt->log, "write the convergence (one line per iteration) as CSV (default: none)");
   cmd->add_flag("--json", opt->json, "final summary as one JSON object instead of text");
-  cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, split faces at T-junctions, drop degenerate/duplicate faces");
+  cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, orient faces alike, split non-manifold edges and vertices and faces at T-junctions, drop degenerate/duplicate faces");
   cmd->callback([&action, opt] {
     action = [opt]() -> int {
       if (!(opt->emin > 0) || !std::isfinite(opt->emin))

@@ -34,7 +34,7 @@ void add_stats_command(CLI::App& app, Action& action) {
       ->default_val(200000)
       ->check(positive_number());
   cmd->add_flag("--json", opt->json, "one JSON object instead of text");
-  cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, split faces at T-junctions, drop degenerate/duplicate faces");
+  cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, orient faces alike, split non-manifold edges and vertices and faces at T-junctions, drop degenerate/duplicate faces");
   cmd->callback([&action, opt] {
     action = [opt]() -> int {
       EdgeInterval interval;

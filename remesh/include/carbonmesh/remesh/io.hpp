@@ -16,8 +16,8 @@ struct PolygonSoup {
 };
 
 struct LoadSettings {
-  // Merge duplicate and nearly coincident vertices, split faces at T-junctions, drop degenerate and duplicate faces
-  // instead of failing.
+  // Merge duplicate and nearly coincident vertices, orient the faces alike, split non-manifold edges and vertices,
+  // split faces at T-junctions, drop degenerate and duplicate faces instead of failing.
   bool repair = false;
 };
 
@@ -29,6 +29,8 @@ struct LoadReport {
   std::size_t unreferenced_vertices = 0;  // removed
   std::size_t duplicate_vertices = 0;     // vertices at the same position as an earlier one
   std::size_t near_duplicate_vertices = 0;  // others within 4 float roundings of the largest coordinate of one
+  std::size_t reversed_faces = 0;  // faces turned to agree with their neighbours (repair)
+  std::size_t split_vertices = 0;  // copies added where edges or vertices were not manifold (repair)
   std::size_t t_junctions = 0;  // border vertices inside another border edge (within the same tolerance)
   std::size_t degenerate_faces = 0;       // zero area or a repeated corner
   std::size_t duplicate_faces = 0;        // same corner set as an earlier face
@@ -40,9 +42,9 @@ struct LoadReport {
 PolygonSoup read_polygon_soup(const std::filesystem::path& file);
 
 // Validates a soup and builds the half-edge mesh. `source` names the input in error messages.
-// Throws InputError (NaN/Inf coordinates, out-of-range indices, no faces, non-manifold edges or vertices,
-// inconsistent orientation, and -- unless settings.repair -- duplicate or nearly coincident vertices, T-junctions
-// and degenerate faces).
+// Throws InputError (NaN/Inf coordinates, out-of-range indices, no faces, and -- unless settings.repair --
+// non-manifold edges or vertices, inconsistent orientation, duplicate or nearly coincident vertices, T-junctions and
+// degenerate faces).
 TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const LoadSettings& settings = {},
                    LoadReport* report = nullptr);
 
