@@ -66,6 +66,20 @@ std::string bytes(const char (&literal)[N]) {
 const std::string kTetraVertices = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
 const std::string kTetraFaces = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
 
+// The mesh of `path` loaded with --repair, after checking that it is refused without, and what the repair did.
+struct Repaired {
+  TriMesh mesh;
+  LoadReport report;
+};
+Repaired load_repaired(const fs::path& path) {
+  EXPECT_THROW(load_mesh(path), InputError) << path;
+  LoadSettings settings;
+  settings.repair = true;
+  Repaired out;
+  out.mesh = load_mesh(path, settings, &out.report);
+  return out;
+}
+
 }  // namespace
 
 TEST(MeshIO, RoundTripEveryFormatKeepsTheMesh) {
@@ -202,11 +216,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(MeshIO, RepairMergesDuplicatesAndDropsDegenerateFaces) {
   const auto path = write_file("repairable.off", off("0 0 0\n1 0 0\n0 1 0\n1 0 0\n1 1 0\n2 0 0\n",
                                                      "3 0 1 2\n3 3 4 2\n3 0 1 5\n", 6, 3));
-  EXPECT_THROW(load_mesh(path), InputError);
-  LoadReport report;
-  LoadSettings settings;
-  settings.repair = true;
-  const TriMesh mesh = load_mesh(path, settings, &report);
+  const auto [mesh, report] = load_repaired(path);
   EXPECT_EQ(report.duplicate_vertices, 1u);
   EXPECT_EQ(report.degenerate_faces, 1u);
   EXPECT_EQ(mesh.n_faces(), 2u);
@@ -219,11 +229,7 @@ TEST(MeshIO, RepairMergesDuplicatesAndDropsDegenerateFaces) {
 // farther apart than the tolerance stay apart.
 TEST(MeshIO, RepairWeldsNearlyCoincidentVertices) {
   const auto path = write_file("seam.off", off("0 0 0\n1 0 0\n0 1 0\n1 1 0\n1e-15 1 0\n", "3 0 1 2\n3 1 3 4\n", 5, 2));
-  EXPECT_THROW(load_mesh(path), InputError);
-  LoadSettings settings;
-  settings.repair = true;
-  LoadReport report;
-  const TriMesh mesh = load_mesh(path, settings, &report);
+  const auto [mesh, report] = load_repaired(path);
   EXPECT_EQ(report.duplicate_vertices, 0u);
   EXPECT_EQ(report.near_duplicate_vertices, 1u);
   EXPECT_EQ(mesh.n_vertices(), 4u);
@@ -279,11 +285,7 @@ TEST(MeshIO, RepairSplitsTJunctions) {
   vertices.precision(17);
   for (const auto& p : points) vertices << p[0] << " " << p[1] << " " << p[2] << "\n";
   const auto path = write_file("t_box.off", off(vertices.str(), faces, static_cast<int>(points.size()), count));
-  EXPECT_THROW(load_mesh(path), InputError);
-  LoadSettings settings;
-  settings.repair = true;
-  LoadReport report;
-  const TriMesh mesh = load_mesh(path, settings, &report);
+  const auto [mesh, report] = load_repaired(path);
   EXPECT_EQ(report.t_junctions, 20u);
   EXPECT_EQ(report.near_duplicate_vertices, 0u);
   EXPECT_TRUE(report.repaired);
@@ -306,11 +308,7 @@ TEST(MeshIO, RepairSplitsAFaceWithVerticesInsideTwoEdgesAtItsCentroid) {
   const auto path = write_file("t_two_edges.off",
                                off("0 0 0\n2 0 0\n0 2 0\n1 0 0\n1 -1 0\n0 1 0\n-1 1 0\n",
                                    "3 0 1 2\n3 0 4 3\n3 3 4 1\n3 0 5 6\n3 5 2 6\n", 7, 5));
-  EXPECT_THROW(load_mesh(path), InputError);
-  LoadSettings settings;
-  settings.repair = true;
-  LoadReport report;
-  const TriMesh mesh = load_mesh(path, settings, &report);
+  const auto [mesh, report] = load_repaired(path);
   EXPECT_EQ(report.t_junctions, 2u);
   EXPECT_EQ(mesh.n_vertices(), 8u);
   EXPECT_EQ(mesh.n_faces(), 9u);
@@ -323,11 +321,7 @@ TEST(MeshIO, RepairSplitsAFaceWithVerticesInsideTwoEdgesAtItsCentroid) {
 // faces had (here outward, even with the first face among the turned ones).
 TEST(MeshIO, RepairOrientsFacesAlikeKeepingTheMajority) {
   const auto tetra = write_file("tetra_flipped.off", off(kTetraVertices, "3 0 2 1\n3 0 1 3\n3 3 2 1\n3 0 3 2\n", 4, 4));
-  EXPECT_THROW(load_mesh(tetra), InputError);
-  LoadSettings settings;
-  settings.repair = true;
-  LoadReport report;
-  const TriMesh turned = load_mesh(tetra, settings, &report);
+  const auto [turned, report] = load_repaired(tetra);
   EXPECT_EQ(report.reversed_faces, 1u);
   EXPECT_EQ(report.split_vertices, 0u);
   EXPECT_EQ(topology(turned).boundary_loops, 0u);
@@ -350,8 +344,7 @@ TEST(MeshIO, RepairOrientsFacesAlikeKeepingTheMajority) {
   const auto path = write_file("sphere_flipped.off", off(vertices.str(), faces.str(),
                                                          static_cast<int>(sphere.n_vertices()),
                                                          static_cast<int>(sphere.n_faces())));
-  LoadReport sphere_report;
-  const TriMesh mesh = load_mesh(path, settings, &sphere_report);
+  const auto [mesh, sphere_report] = load_repaired(path);
   EXPECT_EQ(sphere_report.reversed_faces, 3u);
   EXPECT_EQ(mesh.n_faces(), sphere.n_faces());
   for (auto f : mesh.faces()) EXPECT_GT(OpenMesh::dot(mesh.normal(f), mesh.calc_face_centroid(f)), 0.0) << f.idx();
@@ -362,11 +355,7 @@ TEST(MeshIO, RepairOrientsFacesAlikeKeepingTheMajority) {
 TEST(MeshIO, RepairSplitsNonManifoldVerticesAndEdges) {
   const auto pinched = write_file("pinched_repair.off", off(kTetraVertices + "-1 0 0\n0 -1 0\n0 0 -1\n",
                                                            kTetraFaces + "3 0 4 5\n3 0 6 4\n3 4 6 5\n3 0 5 6\n", 7, 8));
-  EXPECT_THROW(load_mesh(pinched), InputError);
-  LoadSettings settings;
-  settings.repair = true;
-  LoadReport report;
-  const TriMesh two = load_mesh(pinched, settings, &report);
+  const auto [two, report] = load_repaired(pinched);
   EXPECT_EQ(report.split_vertices, 1u);
   EXPECT_EQ(report.reversed_faces, 0u);
   EXPECT_EQ(two.n_vertices(), 8u);
@@ -374,9 +363,7 @@ TEST(MeshIO, RepairSplitsNonManifoldVerticesAndEdges) {
   EXPECT_EQ(topology(two).boundary_loops, 0u);
 
   const auto fin = write_file("fin_repair.off", off(kTetraVertices + "1 1 1\n", kTetraFaces + "3 0 1 4\n", 5, 5));
-  EXPECT_THROW(load_mesh(fin), InputError);
-  LoadReport fin_report;
-  const TriMesh cut = load_mesh(fin, settings, &fin_report);
+  const auto [cut, fin_report] = load_repaired(fin);
   EXPECT_GE(fin_report.split_vertices, 2u);  // the two ends of the edge, for the faces cut off there
   EXPECT_EQ(cut.n_faces(), 5u);
   EXPECT_NEAR(surface_area(cut), 0.5 * 3 + std::sqrt(3.0) / 2 + std::sqrt(2.0) / 2, 1e-12);
