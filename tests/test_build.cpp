@@ -15,6 +15,7 @@
 #include "carbonmesh/carbon/lammps_data.hpp"
 #include "carbonmesh/carbon/lammps_dump.hpp"
 #include "carbonmesh/remesh/io.hpp"
+#include "carbonmesh/remesh/self_intersections.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "test_meshes.hpp"
 #include "test_paths.hpp"
@@ -162,6 +163,21 @@ TEST(BuildCommand, ASurfacePassingThroughItselfIsReported) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("crossing.off: the surface passes through itself"), std::string::npos) << text;
   EXPECT_NE(text.find("crossing.off: the remeshed surface passes through itself"), std::string::npos) << text;
+  // `remesh --json` gives both counts too, the output's in the face indices of the file it wrote.
+  const fs::path out = dir / "remeshed.off", json = dir / "remesh.json";
+  ASSERT_EQ(std::system((std::string(CARBONMESH_CLI) + " -q remesh " + (dir / "crossing.off").string() + " " +
+                         out.string() + " --emin 1.2 --emax 1.8 --json > " + json.string() + " 2> /dev/null")
+                            .c_str()),
+            0);
+  const nlohmann::json r = read_json(json);
+  EXPECT_GT(r["input_self_intersections"]["pairs"].get<std::size_t>(), 0u);
+  const std::size_t pairs = r["self_intersections"]["pairs"];
+  EXPECT_GT(pairs, 0u);
+  const TriMesh written = load_mesh(out);
+  const SelfIntersections again = self_intersections(written);
+  EXPECT_EQ(again.pairs, pairs);
+  EXPECT_EQ(r["self_intersections"]["example"][0], again.example[0]);
+  EXPECT_EQ(r["self_intersections"]["example"][1], again.example[1]);
   fs::remove_all(dir);
 }
 
