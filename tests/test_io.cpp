@@ -11,6 +11,7 @@
 #include <string>
 #include <tuple>
 #include <vector>
+#include <algorithm>
 #include <array>
 
 #include "carbonmesh/remesh/error.hpp"
@@ -122,6 +123,38 @@ TEST(MeshIO, PolygonsAreTriangulated) {
   EXPECT_EQ(mesh.n_faces(), 12u);
   EXPECT_EQ(report.triangulated_polygons, 6u);
   EXPECT_EQ(topology(mesh).genus, 0);
+}
+
+// Non-convex polygons: an L-shaped hexagon listed from a corner that does not see the whole polygon (its fan would
+// turn a triangle over), and a 12-corner comb. Each is triangulated by ear clipping into triangles that turn as the
+// polygon does and cover its area once; a convex pentagon keeps the fan from its first corner.
+TEST(MeshIO, NonConvexPolygonsAreTriangulatedWithoutOverlap) {
+  auto check = [](const std::string& name, const std::string& vertices, const std::string& face, int corners,
+                  double area, std::size_t nonconvex) {
+    const auto path = write_file(name, off(vertices, face, corners, 1));
+    LoadReport report;
+    const TriMesh mesh = load_mesh(path, {}, &report);
+    EXPECT_EQ(report.triangulated_polygons, 1u) << name;
+    EXPECT_EQ(report.nonconvex_polygons, nonconvex) << name;
+    EXPECT_EQ(mesh.n_faces(), static_cast<std::size_t>(corners - 2)) << name;
+    EXPECT_NEAR(surface_area(mesh), area, 1e-12) << name;
+    for (auto f : mesh.faces()) EXPECT_GT(mesh.normal(f)[2], 0.0) << name << " face " << f.idx();
+    return mesh;
+  };
+  check("l_shape.off", "2 1 0\n1 1 0\n1 2 0\n0 2 0\n0 0 0\n2 0 0\n", "6 0 1 2 3 4 5\n", 6, 3.0, 1);
+  // Teeth of width 1 and height 2 on a base 0 <= y <= 1, 0 <= x <= 5: corners listed from the top of the last tooth.
+  check("comb.off",
+        "5 3 0\n4 3 0\n4 1 0\n3 1 0\n3 3 0\n2 3 0\n2 1 0\n1 1 0\n1 3 0\n0 3 0\n0 0 0\n5 0 0\n",
+        "12 0 1 2 3 4 5 6 7 8 9 10 11\n", 12, 5.0 + 3 * 2.0, 1);
+  const TriMesh pentagon = check("pentagon.off", "0 0 0\n2 0 0\n3 1 0\n1 2 0\n-1 1 0\n", "5 0 1 2 3 4\n", 5, 5.0, 0);
+  int f = 0;  // the fan: (0 1 2), (0 2 3), (0 3 4)
+  for (auto fh : pentagon.faces()) {
+    std::vector<int> corners;
+    for (auto v : pentagon.fv_range(fh)) corners.push_back(v.idx());
+    std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
+    EXPECT_EQ(corners, (std::vector<int>{0, f + 1, f + 2}));
+    ++f;
+  }
 }
 
 struct BadInput {

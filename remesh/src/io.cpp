@@ -21,6 +21,7 @@
 #include "binary_formats.hpp"
 #include "orient_soup.hpp"
 #include "t_junctions.hpp"
+#include "triangulate_polygon.hpp"
 #include "text_formats.hpp"
 
 namespace carbonmesh {
@@ -174,7 +175,7 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
   }
   if (soup.polygons.empty()) throw InputError(source + ": no faces");
 
-  // Triangulate (fan), checking indices.
+  // Triangulate (the fan from the first corner, or ear clipping for a non-convex polygon), checking indices.
   std::vector<std::array<int, 3>> triangles;
   triangles.reserve(soup.polygons.size());
   for (std::size_t f = 0; f < soup.polygons.size(); ++f) {
@@ -186,8 +187,12 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
       if (v < 0 || v >= n_points)
         throw InputError(source + ": face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
                          ", out of range (the file has " + std::to_string(n_points) + " vertices)");
-    if (poly.size() > 3) ++report.triangulated_polygons;
-    for (std::size_t k = 1; k + 1 < poly.size(); ++k) triangles.push_back({poly[0], poly[k], poly[k + 1]});
+    if (poly.size() == 3) {
+      triangles.push_back({poly[0], poly[1], poly[2]});
+      continue;
+    }
+    ++report.triangulated_polygons;
+    report.nonconvex_polygons += triangulate_polygon(soup.points, poly, triangles) ? 1 : 0;
   }
 
   // Duplicate vertices: the same position as an earlier referenced vertex.
@@ -422,8 +427,10 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
                                         report.reversed_faces + report.split_vertices + report.t_junctions +
                                         report.degenerate_faces + report.duplicate_faces) > 0;
   if (report.triangulated_polygons > 0)
-    spdlog::info("{}: triangulated {} polygons with more than three corners", source,
-                 report.triangulated_polygons);
+    spdlog::info("{}: triangulated {} polygons with more than three corners{}", source, report.triangulated_polygons,
+                 report.nonconvex_polygons > 0
+                     ? fmt::format(" ({} non-convex, by ear clipping)", report.nonconvex_polygons)
+                     : std::string());
   if (report.unreferenced_vertices > 0)
     spdlog::warn("{}: removed {} vertices used by no face", source, report.unreferenced_vertices);
   if (report.repaired)

@@ -25,7 +25,8 @@ struct LoadSettings {
 struct LoadReport {
   std::size_t input_vertices = 0;
   std::size_t input_polygons = 0;
-  std::size_t triangulated_polygons = 0;  // polygons with more than three corners, fan-triangulated
+  std::size_t triangulated_polygons = 0;  // polygons with more than three corners, triangulated
+  std::size_t nonconvex_polygons = 0;  // of those, the ones the fan from the first corner does not cover (ear clipping)
   std::size_t unreferenced_vertices = 0;  // removed
   std::size_t duplicate_vertices = 0;     // vertices at the same position as an earlier one
   std::size_t near_duplicate_vertices = 0;  // others within 4 float roundings of the largest coordinate of one
