@@ -1,6 +1,7 @@
 #include "carbonmesh/remesh/io.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <OpenMesh/Core/IO/IOManager.hh>
@@ -14,7 +15,9 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/error.hpp"
@@ -433,22 +436,21 @@ TriMesh build_mesh(const PolygonSoup& soup, const std::string& source, const Loa
                      : std::string());
   if (report.unreferenced_vertices > 0)
     spdlog::warn("{}: removed {} vertices used by no face", source, report.unreferenced_vertices);
-  if (report.repaired)
-    spdlog::warn("{}: repaired: merged {} duplicate and {} nearly coincident vertices, {}removed {} degenerate and {} "
-                 "duplicate faces",
-                 source, report.duplicate_vertices, report.near_duplicate_vertices,
-                 (report.reversed_faces > 0
-                      ? fmt::format("reversed {} face{} to orient the faces alike, ", report.reversed_faces,
-                                    report.reversed_faces == 1 ? "" : "s")
-                      : std::string()) +
-                     (report.split_vertices > 0
-                          ? fmt::format("split {} {} where the surface was not a disk (non-manifold), ",
-                                        report.split_vertices, report.split_vertices == 1 ? "vertex" : "vertices")
-                          : std::string()) +
-                     (report.t_junctions > 0
-                          ? fmt::format("split the faces at {} T-junction vertices, ", report.t_junctions)
-                          : std::string()),
-                 report.degenerate_faces, report.duplicate_faces);
+  if (report.repaired) {
+    std::vector<std::string> done{fmt::format("merged {} duplicate and {} nearly coincident vertices",
+                                              report.duplicate_vertices, report.near_duplicate_vertices)};
+    if (report.reversed_faces > 0)
+      done.push_back(fmt::format("reversed {} face{} to orient the faces alike", report.reversed_faces,
+                                 report.reversed_faces == 1 ? "" : "s"));
+    if (report.split_vertices > 0)
+      done.push_back(fmt::format("split {} {} where the surface was not a disk (non-manifold)", report.split_vertices,
+                                 report.split_vertices == 1 ? "vertex" : "vertices"));
+    if (report.t_junctions > 0)
+      done.push_back(fmt::format("split the faces at {} T-junction vertices", report.t_junctions));
+    done.push_back(fmt::format("removed {} degenerate and {} duplicate faces", report.degenerate_faces,
+                               report.duplicate_faces));
+    spdlog::warn("{}: repaired: {}", source, fmt::join(done, ", "));
+  }
   if (report_out) *report_out = report;
   return mesh;
 }
