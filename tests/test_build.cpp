@@ -119,6 +119,31 @@ TEST(BuildCommand, OpenCapIsPassivatedWithTopology) {
   EXPECT_EQ(s["remeshed_mesh"]["self_intersections"]["pairs"], 0);
   fs::remove_all(dir);
 }
+// A triangular flake: its 60-degree corners are sharper than the remeshed triangles can follow, and a triangle with two
+// border edges there would give an atom with one bond. Every atom has two or three bonds, in the summary and in the
+// structure written.
+TEST(BuildCommand, ATriangularFlakeHasNoCarbonWithOneBond) {
+  const fs::path dir = temp_dir("flake");
+  save_mesh(test::triangle_sheet(10, 25.0), dir / "flake.off");
+  ASSERT_EQ(run("build " + (dir / "flake.off").string() + " -o " + (dir / "out").string() + " --no-report"), 0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  ASSERT_TRUE(s.contains("removed_ears"));
+  std::size_t atoms = 0;
+  for (const auto& [bonds, count] : s["dual"]["atoms_by_bond_count"].items()) {
+    EXPECT_GE(std::stoi(bonds), 2) << count << " atoms with " << bonds << " bonds";
+    atoms += count.get<std::size_t>();
+  }
+  EXPECT_EQ(atoms, s["atoms"].get<std::size_t>());
+  const LammpsData d = read_lammps_data(dir / "out" / "structure.data");
+  ASSERT_EQ(d.positions.size(), atoms);
+  for (std::size_t i = 0; i < atoms; ++i) {
+    int n = 0;
+    for (std::size_t j = 0; j < atoms; ++j)
+      if (j != i && (d.positions[i] - d.positions[j]).norm() < 1.75) ++n;
+    EXPECT_GE(n, 2) << "atom " << i + 1;
+  }
+  fs::remove_all(dir);
+}
 
 // A scan's debris: a sphere with a speck (a sphere of radius 0.2) and a stray triangle beside it. Both are removed
 // before the remesh: no atoms on top of each other, and the sphere converges as it does alone.

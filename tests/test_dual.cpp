@@ -8,10 +8,12 @@
 
 #include "carbonmesh/dual/coarse_start.hpp"
 #include "carbonmesh/dual/dual_mesh.hpp"
+#include "carbonmesh/dual/ears.hpp"
 #include "carbonmesh/dual/graph_stats.hpp"
 #include "carbonmesh/dual/optimize.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "test_meshes.hpp"
 
 using namespace carbonmesh;
 
@@ -119,6 +121,57 @@ TEST(Dual, OpenBorderGivesTwoCoordinatedAtomsAndOpenRings) {
     if (!dual.ring_closed[r]) {
       EXPECT_EQ(dual.rings[r].size(), 2u);
     }
+}
+
+// Every face's count of border edges is at most one: no atom of the dual has fewer than two bonds.
+static void expect_no_ears(const TriMesh& mesh) {
+  for (auto f : mesh.faces()) {
+    int border = 0;
+    for (auto h : mesh.fh_range(f)) border += mesh.is_boundary(mesh.opposite_halfedge_handle(h)) ? 1 : 0;
+    EXPECT_LE(border, 1) << "face " << f.idx();
+  }
+}
+
+TEST(Ears, ATriangularSheetLosesItsThreeCornerTriangles) {
+  TriMesh sheet = test::triangle_sheet(4, 8.0);  // 16 triangles of side 2
+  ASSERT_EQ(build_dual(sheet).counts.coordination.at(1), 3u);  // the corners' atoms: one bond each
+  const EarRemoval removed = remove_ears(sheet);
+  EXPECT_EQ(removed.faces, 3u);
+  EXPECT_NEAR(removed.area, 3 * std::sqrt(3.0), 1e-12);  // three triangles of side 2
+  EXPECT_EQ(sheet.n_faces(), 13u);
+  EXPECT_EQ(sheet.n_vertices(), 12u);  // the three corner vertices went with them
+  expect_no_ears(sheet);
+  const Dual dual = build_dual(sheet);
+  EXPECT_EQ(dual.counts.coordination.count(0), 0u);
+  EXPECT_EQ(dual.counts.coordination.count(1), 0u);
+  EXPECT_EQ(dual.counts.coordination.at(2) + dual.counts.coordination.at(3), 13u);
+}
+
+TEST(Ears, AStripOneTriangleWideGoesWhole) {
+  // Two rows of 6 vertices: 10 triangles, the two at the ends with two border edges, the others with one; each
+  // removal leaves its neighbour with two.
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  for (int i = 0; i < 6; ++i) points.emplace_back(i, 0, 0), points.emplace_back(i + 0.5, 1, 0);
+  for (int i = 0; i < 5; ++i) {
+    triangles.push_back({2 * i, 2 * i + 2, 2 * i + 1});
+    triangles.push_back({2 * i + 1, 2 * i + 2, 2 * i + 3});
+  }
+  TriMesh strip = test::mesh_from(points, triangles);
+  const EarRemoval removed = remove_ears(strip);
+  EXPECT_EQ(removed.faces, 10u);
+  EXPECT_EQ(strip.n_faces(), 0u);
+  EXPECT_EQ(strip.n_vertices(), 0u);
+}
+
+TEST(Ears, ClosedSurfacesAndFansKeepEveryFace) {
+  TriMesh sphere = make_icosphere({10.0, 2});
+  const std::size_t faces = sphere.n_faces();
+  EXPECT_EQ(remove_ears(sphere).faces, 0u);
+  EXPECT_EQ(sphere.n_faces(), faces);
+  TriMesh fan = hexagon_fan();  // six triangles, each with one border edge
+  EXPECT_EQ(remove_ears(fan).faces, 0u);
+  EXPECT_EQ(fan.n_faces(), 6u);
 }
 
 TEST(GraphStats, AnglesOfAHexagonFanAre120) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -59,6 +60,26 @@ inline TriMesh radial_noise(TriMesh mesh, double sigma, unsigned seed) {
   std::normal_distribution<double> noise(0.0, sigma);
   for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * (1 + noise(rng)));
   return mesh;
+}
+
+// A flat equilateral triangle of side `side` in the z = 0 plane, cut into n^2 equilateral triangles (n per side),
+// facing +z: its three corners are 60 degrees, each a triangle with two border edges.
+inline TriMesh triangle_sheet(int n, double side) {
+  std::vector<Vec3> points;
+  std::vector<std::vector<int>> index(static_cast<std::size_t>(n) + 1);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i + j <= n; ++i) {
+      index[static_cast<std::size_t>(j)].push_back(static_cast<int>(points.size()));
+      points.emplace_back(side * (i + 0.5 * j) / n, side * (std::sqrt(3.0) / 2) * j / n, 0.0);
+    }
+  auto at = [&](int i, int j) { return index[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)]; };
+  std::vector<std::array<int, 3>> triangles;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i + j < n; ++i) {
+      triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+      if (i + j + 1 < n) triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return mesh_from(points, triangles);
 }
 
 // Adds a copy of `from`, scaled by `scale` about the origin and then shifted by `shift`, to `to` as another

@@ -17,6 +17,7 @@
 #include "carbonmesh/carbon/structure_scale.hpp"
 #include "carbonmesh/dual/coarse_start.hpp"
 #include "carbonmesh/dual/dual_mesh.hpp"
+#include "carbonmesh/dual/ears.hpp"
 #include "carbonmesh/dual/optimize.hpp"
 #include "carbonmesh/remesh/atomic_file.hpp"
 #include "carbonmesh/remesh/components.hpp"
@@ -217,6 +218,15 @@ int run_build(BuildOptions& o) {
     spdlog::warn("{} long and {} short edges remain outside [{:.4f}, {:.4f}]", remeshed.long_edges,
                  remeshed.short_edges, scaled.emin, scaled.emax);
   mesh.garbage_collection();
+  // Triangles with two border edges (whose atoms would have one bond) off before the dual (carbonmesh/dual/ears.hpp).
+  const EarRemoval ears = remove_ears(mesh);
+  if (ears.faces > 0)
+    spdlog::info("{}: {} triangles with two border edges removed (area {:.2f} A^2), at corners sharper than the "
+                 "triangles can follow: their atoms would have had one bond",
+                 source, ears.faces, ears.area);
+  if (mesh.n_faces() == 0)
+    throw InputError(source + ": every triangle of the remeshed surface has two border edges (a strip one triangle "
+                              "wide): no carbon net is left; build it larger (--atoms, --size)");
   const MeshStats remeshed_stats = mesh_stats(mesh, EdgeInterval{scaled.emin, scaled.emax});
   check_remesh_self_intersections(remeshed_stats.self_intersections, source,
                                   (std::filesystem::path(o.out) / "remeshed.off").string());
@@ -284,6 +294,7 @@ int run_build(BuildOptions& o) {
   summary["input_topology"] = to_json(input_topology);
   summary["input_self_intersections"] = to_json(input_crossings);
   summary["removed_components"] = to_json(debris);
+  summary["removed_ears"] = {{"faces", ears.faces}, {"area", ears.area}};
   summary["genus"] = remeshed.after.genus;
   summary["borders"] = remeshed.after.boundary_loops;
   summary["remesh"] = to_json(remeshed);
