@@ -3,7 +3,7 @@
 
 Each input is generated here into a fresh temporary folder (with `carbonmesh shape` or a few lines of Python:
 nothing is copied from elsewhere): a dense icosphere made small, debris beside a sphere, radial noise, flipped
-faces, two components, a flat disc, an ellipsoid, open sheets and tubes, a thin torus, a star prism with sharp creases, a thin
+faces, two components, a flat disc, an ellipsoid, open sheets and tubes, a triangular flake, a thin torus, a star prism with sharp creases, a thin
 helix. Each is built at one or more --atoms values and the summary.json figures go into a markdown table.
 
     /usr/bin/python3 tools/unusual_input_table.py --build build [--out docs/reliability.md]
@@ -80,6 +80,21 @@ def star_prism(height=6.0):
     return vertices, faces
 
 
+def triangle_sheet(n, side=25.0):
+    """A flat equilateral triangle cut into n^2 equilateral triangles: three 60-degree border corners."""
+    index, vertices, faces = {}, [], []
+    for j in range(n + 1):
+        for i in range(n + 1 - j):
+            index[i, j] = len(vertices)
+            vertices.append((side * (i + 0.5 * j) / n, side * math.sqrt(3) / 2 * j / n, 0.0))
+    for j in range(n):
+        for i in range(n - j):
+            faces.append((index[i, j], index[i + 1, j], index[i, j + 1]))
+            if i + j + 1 < n:
+                faces.append((index[i + 1, j], index[i + 1, j + 1], index[i, j + 1]))
+    return vertices, faces
+
+
 def make_inputs(cli, folder):
     def shape(name, *args):
         path = os.path.join(folder, name + ".off")
@@ -120,6 +135,7 @@ def make_inputs(cli, folder):
         ("saddle sheet (one border)",
          write("saddle", grid(40, 40, lambda s, t: (30 * s - 15, 30 * t - 15, ((30 * s - 15) ** 2 - (30 * t - 15) ** 2) / 40))),
          [20000]),
+        ("triangular flake (60-degree border corners)", write("flake", triangle_sheet(10)), [2000, 20000]),
         ("torus, tube radius 1.5 of 10", shape("torus", "torus", "--major", "10", "--minor", "1.5"), [20000]),
         ("five-pointed star prism (36 and 90 degree creases)", write("star", star_prism()), [20000]),
         ("thin helix (tube radius 1 of 6, 4 turns)",
@@ -145,6 +161,12 @@ def row(name, atoms_asked, summary, seconds):
     if r.get("cut_off"):
         notes.append("cut off: an input point %.2f A (%.1f emax) from the surface" % (
             r["farthest_input"], r["farthest_input"] / summary["scale"]["emax"]))
+    ears = summary.get("removed_ears", {}).get("faces", 0)
+    if ears:
+        notes.append("%d triangle%s with two border edges removed" % (ears, "" if ears == 1 else "s"))
+    one_bonded = sum(n for k, n in summary["dual"]["atoms_by_bond_count"].items() if int(k) < 2)
+    if one_bonded:
+        notes.append("%d atoms with fewer than two bonds" % one_bonded)
     if r["long"] or r["short"]:
         notes.append("%d long, %d short edges" % (r["long"], r["short"]))
     return "| %s | %d | %d | %s | %.4f-%.4f | %.0f-%.0f | %d | %d | %.1f | %s |" % (
