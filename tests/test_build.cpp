@@ -145,6 +145,41 @@ TEST(BuildCommand, ATriangularFlakeHasNoCarbonWithOneBond) {
   fs::remove_all(dir);
 }
 
+// --lattice: the flat flake cut from a triangular lattice is graphene, hexagons only, every bond 1.42 A; a surface
+// that is not flat is refused.
+TEST(BuildCommand, LatticeCutsAFlatFlakeIntoGraphene) {
+  const fs::path dir = temp_dir("lattice");
+  save_mesh(test::triangle_sheet(10, 25.0), dir / "flake.off");
+  ASSERT_EQ(run("build " + (dir / "flake.off").string() + " -o " + (dir / "out").string() +
+                " --lattice --atoms 600 --no-report"),
+            0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  ASSERT_TRUE(s.contains("lattice"));
+  EXPECT_LT(s["lattice"]["flatness"].get<double>(), 1e-9);
+  ASSERT_EQ(s["rings_by_size"].size(), 1u);
+  EXPECT_GT(s["rings_by_size"]["6"].get<int>(), 200);
+  for (const auto& [bonds, count] : s["dual"]["atoms_by_bond_count"].items()) EXPECT_GE(std::stoi(bonds), 2);
+  EXPECT_NEAR(s["optimization"]["bonds_after"]["min"].get<double>(), 1.42, 1e-3);
+  EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, 1e-3);
+  EXPECT_EQ(s["optimization"]["strained_atoms_after"], 0);
+  EXPECT_EQ(s["remesh"]["long"], 0);
+  EXPECT_EQ(s["remesh"]["short"], 0);
+  EXPECT_EQ(s["borders"], 1);
+
+  // Not flat: an open hemisphere.
+  TriMesh cap = make_icosphere({10.0, 3});
+  for (auto f : cap.faces()) {
+    Vec3 c(0, 0, 0);
+    for (auto v : cap.fv_range(f)) c += cap.point(v);
+    if (c[2] < 0) cap.delete_face(f, true);
+  }
+  cap.garbage_collection();
+  save_mesh(cap, dir / "cap.off");
+  EXPECT_EQ(run("build " + (dir / "cap.off").string() + " -o " + (dir / "cap").string() + " --lattice"), 2);
+  EXPECT_FALSE(fs::exists(dir / "cap" / "summary.json"));
+  fs::remove_all(dir);
+}
+
 // A scan's debris: a sphere with a speck (a sphere of radius 0.2) and a stray triangle beside it. Both are removed
 // before the remesh: no atoms on top of each other, and the sphere converges as it does alone.
 TEST(BuildCommand, ComponentsSmallerThanAC20CageAreRemoved) {

@@ -3,8 +3,9 @@
 
 Each input is generated here into a fresh temporary folder (with `carbonmesh shape` or a few lines of Python:
 nothing is copied from elsewhere): a dense icosphere made small, debris beside a sphere, radial noise, flipped
-faces, two components, a flat disc, an ellipsoid, open sheets and tubes, a triangular flake, a thin torus, a star prism with sharp creases, a thin
-helix. Each is built at one or more --atoms values and the summary.json figures go into a markdown table.
+faces, two components, a flat disc, an ellipsoid, open sheets and tubes, a triangular flake (also cut from a
+lattice, `--lattice`, as is the flat annulus), a thin torus, a star prism with sharp creases, a thin helix. Each is
+built at one or more --atoms values and the summary.json figures go into a markdown table.
 
     /usr/bin/python3 tools/unusual_input_table.py --build build [--out docs/reliability.md]
 
@@ -132,10 +133,12 @@ def make_inputs(cli, folder):
          write("annulus", grid(60, 30, lambda s, t: (20 * (0.05 + 0.95 * t) * math.cos(tau * s),
                                                     20 * (0.05 + 0.95 * t) * math.sin(tau * s), 0.0), True)),
          [20000]),
+        ("annulus (flat, two borders), `--lattice`", os.path.join(folder, "annulus.off"), [20000], ["--lattice"]),
         ("saddle sheet (one border)",
          write("saddle", grid(40, 40, lambda s, t: (30 * s - 15, 30 * t - 15, ((30 * s - 15) ** 2 - (30 * t - 15) ** 2) / 40))),
          [20000]),
         ("triangular flake (60-degree border corners)", write("flake", triangle_sheet(10)), [2000, 20000]),
+        ("triangular flake, `--lattice`", os.path.join(folder, "flake.off"), [2000, 20000], ["--lattice"]),
         ("torus, tube radius 1.5 of 10", shape("torus", "torus", "--major", "10", "--minor", "1.5"), [20000]),
         ("five-pointed star prism (36 and 90 degree creases)", write("star", star_prism()), [20000]),
         ("thin helix (tube radius 1 of 6, 4 turns)",
@@ -186,12 +189,13 @@ def main():
     lines = ["| input | --atoms | atoms | rings | bonds min-max (A) | angles min-max (deg) | strained | iterations "
              "| seconds | notes |", "|---|---|---|---|---|---|---|---|---|---|"]
     with tempfile.TemporaryDirectory(prefix="carbonmesh_unusual_") as folder:
-        for name, path, sizes in make_inputs(cli, folder):
+        for name, path, sizes, *options in make_inputs(cli, folder):
+            extra = options[0] if options else []  # more build options (--lattice)
             for n in sizes:
-                out = os.path.join(folder, "%s-%d" % (os.path.basename(path)[:-4], n))
+                out = os.path.join(folder, "%s-%d%s" % (os.path.basename(path)[:-4], n, "".join(extra)))
                 start = time.monotonic()
                 try:
-                    run = subprocess.run([cli, "-q", "build", path, "-o", out, "--atoms", str(n), "--no-report"],
+                    run = subprocess.run([cli, "-q", "build", path, "-o", out, "--atoms", str(n), "--no-report"] + extra,
                                          capture_output=True, text=True, timeout=TIMEOUT)
                     code = run.returncode
                 except subprocess.TimeoutExpired:

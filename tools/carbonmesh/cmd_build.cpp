@@ -29,6 +29,7 @@
 #include "commands.hpp"
 #include "number_checks.hpp"
 #include "defect_report.hpp"
+#include "lattice_step.hpp"
 #include "surface_checks.hpp"
 
 namespace carbonmesh::cli {
@@ -41,7 +42,7 @@ struct BuildOptions {
   std::optional<int> coarse_levels;
   RemeshSettings remesh;
   DualOptimizeSettings optimize;
-  bool passivate = false, topology = false, repair = false, no_report = false;
+  bool passivate = false, topology = false, repair = false, no_report = false, lattice = false;
   long steps = 10000;
   double temperature = 300.0;
   int np = 4;
@@ -209,10 +210,22 @@ int run_build(BuildOptions& o) {
   std::vector<CoarseLevel> coarse_meshes;  // the levels that converged, for the coarse start of the optimisation
   o.remesh.on_coarse_mesh = [&coarse_meshes](const TriMesh& m, int level) { coarse_meshes.push_back({level, m}); };
   RemeshResult remeshed;
-  try {
-    remeshed = remesh(mesh, o.remesh);
-  } catch (const InputError& e) {  // name the input
-    throw InputError(source + ": " + e.what());
+  nlohmann::json lattice;  // summary.json's "lattice" (--lattice)
+  if (o.lattice) {
+    LatticeStep step = cut_lattice(mesh, source, scaled.edge, EdgeInterval{scaled.emin, scaled.emax},
+                                   20 * area_per_atom(o.bond));
+    remeshed = step.result;
+    lattice = std::move(step.json);
+  } else {
+    if (!o.in.empty() && is_flat(flatness(mesh), scaled.edge))
+      spdlog::info("{}: the surface is flat: --lattice cuts it from a triangular lattice instead of remeshing it (a "
+                   "graphene sheet of hexagons only, no 5-7 pairs)",
+                   source);
+    try {
+      remeshed = remesh(mesh, o.remesh);
+    } catch (const InputError& e) {  // name the input
+      throw InputError(source + ": " + e.what());
+    }
   }
   if (!remeshed.converged)
     spdlog::warn("{} long and {} short edges remain outside [{:.4f}, {:.4f}]", remeshed.long_edges,
@@ -239,12 +252,19 @@ int run_build(BuildOptions& o) {
   // finer than the edges, such as a scan's noise, is bridged) or with a mean edge away from a (the interval allows
   // 0.8 a to 1.2 a) holds another number of atoms than the scale promised.
   if (const double atoms = static_cast<double>(dual.atoms());
-      !o.in.empty() && std::abs(atoms - scaled.expected_atoms) > 0.1 * scaled.expected_atoms)
-    spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the remeshed surface has {:.0f}% of the "
-                 "input's area (detail finer than the edges, such as noise, is bridged) and a mean edge of {:.3f} A "
-                 "(target {:.3f} A)",
-                 source, atoms, scaled.expected_atoms, 100 * surface_area(mesh) / scaled.area,
-                 remeshed_stats.edges.mean, scaled.edge);
+      !o.in.empty() && std::abs(atoms - scaled.expected_atoms) > 0.1 * scaled.expected_atoms) {
+    if (o.lattice)
+      spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the lattice sites inside the outline, "
+                   "less the border triangles taken off, cover {:.0f}% of the input's area (a small flake loses "
+                   "a larger share at its border)",
+                   source, atoms, scaled.expected_atoms, 100 * surface_area(mesh) / scaled.area);
+    else
+      spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the remeshed surface has {:.0f}% of the "
+                   "input's area (detail finer than the edges, such as noise, is bridged) and a mean edge of {:.3f} A "
+                   "(target {:.3f} A)",
+                   source, atoms, scaled.expected_atoms, 100 * surface_area(mesh) / scaled.area,
+                   remeshed_stats.edges.mean, scaled.edge);
+  }
   o.optimize.bond = o.bond;
   // Coarse start: the duals of the coarse levels, optimised coarsest first at 2^k times the bond (and window), give
   // the fine atoms their long-range displacements first (carbonmesh/dual/coarse_start.hpp).
@@ -299,6 +319,7 @@ int run_build(BuildOptions& o) {
   summary["borders"] = remeshed.after.boundary_loops;
   summary["remesh"] = to_json(remeshed);
   summary["remesh"].erase("log");
+  if (o.lattice) summary["lattice"] = lattice;
   summary["remeshed_mesh"] = to_json(remeshed_stats);
   summary["dual"] = to_json(dual.counts);
   summary["atoms"] = structure.atoms();
@@ -414,6 +435,9 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_flag("--passivate", opt->passivate, "hydrogen on two-coordinated border carbons (C-H 1.09 A)");
   cmd->add_flag("--topology", opt->topology, "also write structure-full.data: atom_style full with Bonds and Angles (other force fields)");
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
+  cmd->add_flag("--lattice", opt->lattice,
+                "flat input: cut it from a triangular lattice of edge sqrt(3) b instead of remeshing it (graphene: "
+                "hexagons only; one lattice line along its longest border edge)");
   cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, orient faces alike, split non-manifold edges and vertices and faces at T-junctions, drop degenerate/duplicate faces");
   cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(non_negative_number());
   cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str();

@@ -1,0 +1,106 @@
+// A flat surface cut from a triangular lattice (build --lattice): flatness and lattice_sheet.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/lattice_sheet.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+#include "test_meshes.hpp"
+
+using namespace carbonmesh;
+
+namespace {
+
+// `mesh` turned about the axis (1, 2, 3) by 0.7 rad and shifted: a flat sheet in no coordinate plane.
+TriMesh tilted(TriMesh mesh) {
+  Vec3 k(1, 2, 3);
+  k.normalize();
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  for (auto v : mesh.vertices()) {
+    const Vec3 p = mesh.point(v);  // Rodrigues' rotation
+    mesh.set_point(v, c * p + s * OpenMesh::cross(k, p) + (1 - c) * OpenMesh::dot(k, p) * k + Vec3(5, -3, 2));
+  }
+  return mesh;
+}
+
+Vec3 face_normal(const TriMesh& mesh, TriMesh::FaceHandle f) {
+  const auto h = mesh.halfedge_handle(f);
+  const Vec3 a = mesh.point(mesh.from_vertex_handle(h)), b = mesh.point(mesh.to_vertex_handle(h)),
+             c = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+  return OpenMesh::cross(b - a, c - a).normalized();
+}
+
+}  // namespace
+
+TEST(LatticeSheet, ATiltedFlakeIsCutIntoEqualTrianglesInItsPlane) {
+  const TriMesh flake = tilted(test::triangle_sheet(6, 20.0));
+  const Flatness plane = flatness(flake);
+  EXPECT_LT(plane.distance, 1e-9);
+  const Vec3 input_normal = face_normal(flake, *flake.faces().begin());
+  EXPECT_NEAR(OpenMesh::dot(plane.normal, input_normal), 1.0, 1e-9);
+  const LatticeSheet sheet = lattice_sheet(flake, plane, 1.0);
+  const TriMesh& m = sheet.mesh;
+  // About the flake's area in triangles of side 1 (the sites inside the outline).
+  const double expected = surface_area(flake) / (std::sqrt(3.0) / 4);
+  EXPECT_NEAR(static_cast<double>(m.n_faces()), expected, 0.1 * expected);
+  for (auto e : m.edges()) EXPECT_NEAR(m.calc_edge_length(e), 1.0, 1e-9);
+  for (auto v : m.vertices()) {
+    EXPECT_LT(std::abs(OpenMesh::dot(m.point(v) - plane.centroid, plane.normal)), 1e-9);
+    if (!m.is_boundary(v)) {
+      EXPECT_EQ(m.valence(v), 6u);
+    }
+  }
+  for (auto f : m.faces()) EXPECT_NEAR(OpenMesh::dot(face_normal(m, f), input_normal), 1.0, 1e-9);
+  const Topology t = topology(m);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.boundary_loops, 1);
+  EXPECT_EQ(t.genus, 0);
+}
+
+TEST(LatticeSheet, TheLongestBorderEdgeIsALatticeLine) {
+  // A 10.5 x 4.3 rectangle of two triangles: its long sides are the longest border edges, the first one at y = 0.
+  const TriMesh rectangle =
+      test::mesh_from({{0, 0, 0}, {10.5, 0, 0}, {10.5, 4.3, 0}, {0, 4.3, 0}}, {{{0, 1, 2}}, {{0, 2, 3}}});
+  const LatticeSheet sheet = lattice_sheet(rectangle, flatness(rectangle), 1.0);
+  int on_side = 0;
+  for (auto v : sheet.mesh.vertices()) {
+    const Vec3 p = sheet.mesh.point(v);
+    EXPECT_GT(p[1], -1e-9);  // nothing below the side: its row of triangles stands on it
+    if (std::abs(p[1]) < 1e-9) ++on_side;
+  }
+  EXPECT_GE(on_side, 10);  // 0, 1, ..., 10 (the triangles whose centroid is inside)
+  EXPECT_NEAR(std::fmod(std::abs(sheet.angle_deg), 180.0), 0.0, 1e-9);
+}
+
+TEST(LatticeSheet, AnAnnulusKeepsItsHole) {
+  // A flat ring, radii 3 and 12, of 40 x 8 quads.
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  const int nu = 40, nv = 8;
+  for (int j = 0; j <= nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const double r = 3 + 9.0 * j / nv, a = 2 * std::acos(-1.0) * i / nu;
+      points.emplace_back(r * std::cos(a), r * std::sin(a), 0);
+    }
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const int a = j * nu + i, b = j * nu + (i + 1) % nu, c = a + nu, d = b + nu;
+      triangles.push_back({a, b, d});
+      triangles.push_back({a, d, c});
+    }
+  const TriMesh ring = test::mesh_from(points, triangles);
+  const LatticeSheet sheet = lattice_sheet(ring, flatness(ring), 1.0);
+  const Topology t = topology(sheet.mesh);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.boundary_loops, 2);
+  for (auto v : sheet.mesh.vertices()) EXPECT_GT(sheet.mesh.point(v).norm(), 3 - 1.0);  // within an edge of the hole
+}
+
+TEST(LatticeSheet, ASurfaceWithoutBorderIsRefused) {
+  const TriMesh sphere = make_icosphere({10.0, 2});
+  const Flatness plane = flatness(sphere);
+  EXPECT_GT(plane.distance, 5.0);  // not flat
+  EXPECT_THROW(lattice_sheet(sphere, plane, 1.0), InputError);
+}
