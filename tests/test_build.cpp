@@ -151,7 +151,7 @@ TEST(BuildCommand, LatticeCutsAFlatFlakeIntoGraphene) {
   const fs::path dir = temp_dir("lattice");
   save_mesh(test::triangle_sheet(10, 25.0), dir / "flake.off");
   ASSERT_EQ(run("build " + (dir / "flake.off").string() + " -o " + (dir / "out").string() +
-                " --lattice --atoms 600 --no-report"),
+                " --lattice --atoms 600 --no-report --steps 100"),
             0);
   const nlohmann::json s = read_json(dir / "out" / "summary.json");
   ASSERT_TRUE(s.contains("lattice"));
@@ -165,6 +165,26 @@ TEST(BuildCommand, LatticeCutsAFlatFlakeIntoGraphene) {
   EXPECT_EQ(s["remesh"]["long"], 0);
   EXPECT_EQ(s["remesh"]["short"], 0);
   EXPECT_EQ(s["borders"], 1);
+
+  // The deck runs: a box shrink-wrapped to a flat sheet alone would have no thickness (LAMMPS: "Cannot use neighbor
+  // bins - box size << cutoff"); every atom keeps its two or three neighbours.
+  if (std::system("command -v lmp > /dev/null 2>&1") == 0) {
+    const std::string lmp = "cd '" + (dir / "out").string() + "' && lmp -in in.rebo -log log.lammps -screen none";
+    ASSERT_EQ(std::system(lmp.c_str()), 0);
+    const DumpFrame f = read_last_dump_frame(dir / "out" / "dump.rebo.lammpstrj");
+    const std::size_t atoms = s["atoms"];
+    ASSERT_EQ(f.positions.size(), atoms);
+    const LammpsData d = read_lammps_data(dir / "out" / "structure.data");
+    for (std::size_t i = 0; i < atoms; ++i) {
+      int before = 0, after = 0;
+      for (std::size_t j = 0; j < atoms; ++j) {
+        if (j == i) continue;
+        before += (d.positions[i] - d.positions[j]).norm() < 1.85 ? 1 : 0;
+        after += (f.positions[i] - f.positions[j]).norm() < 1.85 ? 1 : 0;
+      }
+      EXPECT_EQ(after, before) << "atom " << i + 1;
+    }
+  }
 
   // Not flat: an open hemisphere.
   TriMesh cap = make_icosphere({10.0, 3});

@@ -22,7 +22,9 @@ std::string rebo_deck(const ReboDeckSettings& s) {
   line(fmt::format("# Parallel: mpirun -np {} lmp -in in.rebo", s.mpi_ranks));
   line("");
   line("units           metal");
-  line("boundary        s s s");
+  // Shrink-wrapped, but never smaller than the data file's box (the atoms plus vacuum): a flat sheet has no extent
+  // across its plane, and a box wrapped to it alone is too thin for LAMMPS's neighbour bins.
+  line("boundary        m m m");
   line(fmt::format("atom_style      {}", s.topology ? "full" : "atomic"));
   line(fmt::format("read_data       {}", s.data_file));
   if (s.topology) {
