@@ -60,9 +60,10 @@ TEST(LatticeSheet, ATiltedFlakeIsCutIntoEqualTrianglesInItsPlane) {
 }
 
 TEST(LatticeSheet, TheLongestBorderEdgeIsALatticeLine) {
-  // A 10.5 x 4.3 rectangle of two triangles: its long sides are the longest border edges, the first one at y = 0.
+  // A 10.3 x 4.3 rectangle of two triangles: its long sides are the longest border edges, the first one at y = 0 (no
+  // lattice triangle has its centroid on its other sides).
   const TriMesh rectangle =
-      test::mesh_from({{0, 0, 0}, {10.5, 0, 0}, {10.5, 4.3, 0}, {0, 4.3, 0}}, {{{0, 1, 2}}, {{0, 2, 3}}});
+      test::mesh_from({{0, 0, 0}, {10.3, 0, 0}, {10.3, 4.3, 0}, {0, 4.3, 0}}, {{{0, 1, 2}}, {{0, 2, 3}}});
   const LatticeSheet sheet = lattice_sheet(rectangle, flatness(rectangle), 1.0);
   int on_side = 0;
   for (auto v : sheet.mesh.vertices()) {
@@ -71,6 +72,18 @@ TEST(LatticeSheet, TheLongestBorderEdgeIsALatticeLine) {
     if (std::abs(p[1]) < 1e-9) ++on_side;
   }
   EXPECT_GE(on_side, 10);  // 0, 1, ..., 10 (the triangles whose centroid is inside)
+  // Every lattice triangle whose centroid lies in the rectangle is in the mesh (but those left out where they touched
+  // the rest at one corner only): counted here from the lattice points (i + j / 2, j sqrt(3) / 2).
+  const double h = std::sqrt(3.0) / 2;
+  std::size_t inside = 0;
+  for (int j = -2; j < 8; ++j)
+    for (int i = -10; i < 14; ++i)
+      for (const double d : {1.0 / 3, 2.0 / 3}) {  // the up and the down triangle's centroid, (i + d, j + d)
+        const double x = i + d + 0.5 * (j + d), y = (j + d) * h;
+        const double e = 1e-9;  // on the border counts as inside (the left side passes through some centroids)
+        if (x >= -e && x <= 10.3 + e && y >= -e && y <= 4.3 + e) ++inside;
+      }
+  EXPECT_EQ(sheet.mesh.n_faces() + sheet.dropped, inside);
   EXPECT_NEAR(std::fmod(std::abs(sheet.angle_deg), 180.0), 0.0, 1e-9);
 }
 

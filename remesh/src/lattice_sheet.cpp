@@ -96,7 +96,8 @@ Flatness flatness(const TriMesh& mesh) {
   out.normal = normal;
   out.u = Vec3(most[0], most[1], most[2]);
   out.v = OpenMesh::cross(normal, out.u);
-  for (auto v : mesh.vertices()) out.distance = std::max(out.distance, std::abs(OpenMesh::dot(mesh.point(v) - c, normal)));
+  for (auto v : mesh.vertices())
+    out.distance = std::max(out.distance, std::abs(OpenMesh::dot(mesh.point(v) - c, normal)));
   return out;
 }
 
@@ -151,8 +152,10 @@ LatticeSheet lattice_sheet(const TriMesh& flat, const Flatness& plane, double ed
           if (in_triangle(t, lattice.at(ci, cj))) kept[down].insert(pack(i, j));
         }
   }
-  auto is_kept = [&](long i, long j, long down) { return kept[static_cast<std::size_t>(down)].count(pack(i, j)) > 0; };
-  std::vector<std::pair<long, long>> points;  // (j, i) of every corner of a kept triangle, sorted: the output's order
+  auto is_kept = [&](long i, long j, long down) {
+    return kept[static_cast<std::size_t>(down)].count(pack(i, j)) > 0;
+  };
+  std::vector<std::pair<long, long>> points;  // (j, i) of every corner of a kept triangle, sorted (the fan test's)
   {
     std::unordered_set<std::uint64_t> seen;
     for (int down = 0; down < 2; ++down)
@@ -197,28 +200,31 @@ LatticeSheet lattice_sheet(const TriMesh& flat, const Flatness& plane, double ed
     }
   }
 
-  // The mesh: the points of kept triangles in (j, i) order, the triangles in (j, i, down) order.
+  // The mesh: the kept triangles in (j, i, down) order, their corners in (j, i) order.
+  std::vector<std::array<long, 3>> triangles_kept;  // (j, i, down)
+  for (int down = 0; down < 2; ++down)
+    for (const std::uint64_t key : kept[down])
+      triangles_kept.push_back(
+          {static_cast<std::int32_t>(key & 0xffffffffu), static_cast<std::int32_t>(key >> 32), down});
+  std::sort(triangles_kept.begin(), triangles_kept.end());
+  std::vector<std::pair<long, long>> used;  // (j, i)
+  for (const auto& [j, i, down] : triangles_kept)
+    for (const auto& [ci, cj] : corners(i, j, static_cast<int>(down))) used.emplace_back(cj, ci);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
   std::unordered_map<std::uint64_t, int> vertex;
-  std::vector<std::array<int, 3>> faces;
-  for (const auto& [j, i] : points)
-    for (int down = 0; down < 2; ++down)
-      if (is_kept(i, j, down))
-        for (const auto& [ci, cj] : corners(i, j, down)) vertex.emplace(pack(ci, cj), -1);
-  for (const auto& [j, i] : points) {
-    auto found = vertex.find(pack(i, j));
-    if (found == vertex.end()) continue;
-    found->second = static_cast<int>(out.mesh.n_vertices());
+  for (const auto& [j, i] : used) {
+    vertex[pack(i, j)] = static_cast<int>(out.mesh.n_vertices());
     const Point2 p = lattice.at(static_cast<double>(i), static_cast<double>(j));
     out.mesh.add_vertex(plane.centroid + p.x * plane.u + p.y * plane.v);
   }
-  for (const auto& [j, i] : points)
-    for (int down = 0; down < 2; ++down)
-      if (is_kept(i, j, down)) {
-        std::array<int, 3> f{};
-        const Corners c = corners(i, j, down);
-        for (std::size_t k = 0; k < 3; ++k) f[k] = vertex.at(pack(c[k].first, c[k].second));
-        faces.push_back(f);
-      }
+  std::vector<std::array<int, 3>> faces;
+  for (const auto& [j, i, down] : triangles_kept) {
+    std::array<int, 3> f{};
+    const Corners c = corners(i, j, static_cast<int>(down));
+    for (std::size_t k = 0; k < 3; ++k) f[k] = vertex.at(pack(c[k].first, c[k].second));
+    faces.push_back(f);
+  }
   if (!add_faces(out.mesh, faces))  // (every vertex has one fan and every edge at most two triangles)
     throw std::logic_error("lattice_sheet: the lattice triangles did not form a manifold mesh");
   return out;
