@@ -43,6 +43,27 @@ nlohmann::json read_json(const fs::path& file) {
   return nlohmann::json::parse(in);
 }
 
+// The upper half of an icosphere of radius 10 (the faces whose centroid has z >= 0): one border.
+TriMesh open_hemisphere() {
+  TriMesh mesh = make_icosphere({10.0, 3});
+  for (auto f : mesh.faces()) {
+    Vec3 c(0, 0, 0);
+    for (auto v : mesh.fv_range(f)) c += mesh.point(v);
+    if (c[2] < 0) mesh.delete_face(f, true);
+  }
+  mesh.garbage_collection();
+  return mesh;
+}
+
+// How many other atoms lie within `cutoff` of each atom (its C neighbours at a bond cutoff).
+std::vector<int> neighbour_counts(const std::vector<Vec3>& positions, double cutoff) {
+  std::vector<int> n(positions.size(), 0);
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    for (std::size_t j = 0; j < positions.size(); ++j)
+      if (j != i && (positions[i] - positions[j]).norm() < cutoff) ++n[i];
+  return n;
+}
+
 }  // namespace
 
 TEST(BuildCommand, DefaultSphereGivesClosedFullerene) {
@@ -78,25 +99,14 @@ TEST(BuildCommand, DefaultSphereGivesClosedFullerene) {
   const DumpFrame f = read_last_dump_frame(dir / "out" / "dump.rebo.lammpstrj");
   EXPECT_EQ(f.timestep, 100);
   ASSERT_EQ(f.positions.size(), atoms);
-  for (std::size_t i = 0; i < atoms; ++i) {
-    int n = 0;
-    for (std::size_t j = 0; j < atoms; ++j)
-      if (j != i && (f.positions[i] - f.positions[j]).norm() < 1.85) ++n;
-    EXPECT_EQ(n, 3) << "atom " << i + 1;
-  }
+  const std::vector<int> neighbours = neighbour_counts(f.positions, 1.85);
+  for (std::size_t i = 0; i < atoms; ++i) EXPECT_EQ(neighbours[i], 3) << "atom " << i + 1;
   fs::remove_all(dir);
 }
 
 TEST(BuildCommand, OpenCapIsPassivatedWithTopology) {
   const fs::path dir = temp_dir("cap");
-  TriMesh mesh = make_icosphere({10.0, 3});
-  for (auto f : mesh.faces()) {
-    Vec3 c(0, 0, 0);
-    for (auto v : mesh.fv_range(f)) c += mesh.point(v);
-    if (c[2] < 0) mesh.delete_face(f, true);
-  }
-  mesh.garbage_collection();
-  save_mesh(mesh, dir / "cap.off");
+  save_mesh(open_hemisphere(), dir / "cap.off");
   ASSERT_EQ(run("build " + (dir / "cap.off").string() + " -o " + (dir / "out").string() +
                 " --passivate --topology --steps 100"),
             0);
@@ -136,12 +146,8 @@ TEST(BuildCommand, ATriangularFlakeHasNoCarbonWithOneBond) {
   EXPECT_EQ(atoms, s["atoms"].get<std::size_t>());
   const LammpsData d = read_lammps_data(dir / "out" / "structure.data");
   ASSERT_EQ(d.positions.size(), atoms);
-  for (std::size_t i = 0; i < atoms; ++i) {
-    int n = 0;
-    for (std::size_t j = 0; j < atoms; ++j)
-      if (j != i && (d.positions[i] - d.positions[j]).norm() < 1.75) ++n;
-    EXPECT_GE(n, 2) << "atom " << i + 1;
-  }
+  const std::vector<int> neighbours = neighbour_counts(d.positions, 1.75);
+  for (std::size_t i = 0; i < atoms; ++i) EXPECT_GE(neighbours[i], 2) << "atom " << i + 1;
   fs::remove_all(dir);
 }
 
@@ -174,27 +180,13 @@ TEST(BuildCommand, LatticeCutsAFlatFlakeIntoGraphene) {
     const DumpFrame f = read_last_dump_frame(dir / "out" / "dump.rebo.lammpstrj");
     const std::size_t atoms = s["atoms"];
     ASSERT_EQ(f.positions.size(), atoms);
-    const LammpsData d = read_lammps_data(dir / "out" / "structure.data");
-    for (std::size_t i = 0; i < atoms; ++i) {
-      int before = 0, after = 0;
-      for (std::size_t j = 0; j < atoms; ++j) {
-        if (j == i) continue;
-        before += (d.positions[i] - d.positions[j]).norm() < 1.85 ? 1 : 0;
-        after += (f.positions[i] - f.positions[j]).norm() < 1.85 ? 1 : 0;
-      }
-      EXPECT_EQ(after, before) << "atom " << i + 1;
-    }
+    const std::vector<int> before = neighbour_counts(read_lammps_data(dir / "out" / "structure.data").positions, 1.85);
+    const std::vector<int> after = neighbour_counts(f.positions, 1.85);
+    for (std::size_t i = 0; i < atoms; ++i) EXPECT_EQ(after[i], before[i]) << "atom " << i + 1;
   }
 
   // Not flat: an open hemisphere.
-  TriMesh cap = make_icosphere({10.0, 3});
-  for (auto f : cap.faces()) {
-    Vec3 c(0, 0, 0);
-    for (auto v : cap.fv_range(f)) c += cap.point(v);
-    if (c[2] < 0) cap.delete_face(f, true);
-  }
-  cap.garbage_collection();
-  save_mesh(cap, dir / "cap.off");
+  save_mesh(open_hemisphere(), dir / "cap.off");
   EXPECT_EQ(run("build " + (dir / "cap.off").string() + " -o " + (dir / "cap").string() + " --lattice"), 2);
   EXPECT_FALSE(fs::exists(dir / "cap" / "summary.json"));
   fs::remove_all(dir);
