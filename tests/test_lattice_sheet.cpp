@@ -59,8 +59,8 @@ TEST(LatticeSheet, ATiltedFlakeIsCutIntoEqualTrianglesInItsPlane) {
   EXPECT_EQ(t.genus, 0);
 }
 
-TEST(LatticeSheet, TheLongestBorderEdgeIsALatticeLine) {
-  // A 10.3 x 4.3 rectangle of two triangles: its long sides are the longest border edges, the first one at y = 0 (no
+TEST(LatticeSheet, TheLongestSideIsALatticeLine) {
+  // A 10.3 x 4.3 rectangle of two triangles: its long sides are the longest straight sides, the first one at y = 0 (no
   // lattice triangle has its centroid on its other sides).
   const TriMesh rectangle =
       test::mesh_from({{0, 0, 0}, {10.3, 0, 0}, {10.3, 4.3, 0}, {0, 4.3, 0}}, {{{0, 1, 2}}, {{0, 2, 3}}});
@@ -116,4 +116,41 @@ TEST(LatticeSheet, ASurfaceWithoutBorderIsRefused) {
   const Flatness plane = flatness(sphere);
   EXPECT_GT(plane.distance, 5.0);  // not flat
   EXPECT_THROW(lattice_sheet(sphere, plane, 1.0), InputError);
+}
+
+// A 30 x 6 ribbon whose long sides are cut into edges of 2 and whose ends are single edges of 6: the lattice follows
+// the longest straight side (the long sides, 30), not the longest edge (an end). Along the long sides the lattice's
+// border edges then lie on the side (a zigzag edge of the carbon net); turned 30 degrees, none does (armchair).
+TEST(LatticeSheet, TheLatticeFollowsTheLongestStraightSideAndTurns) {
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  for (int i = 0; i <= 15; ++i) points.emplace_back(2.0 * i, 0, 0), points.emplace_back(2.0 * i, 6, 0);
+  for (int i = 0; i < 15; ++i) {
+    triangles.push_back({2 * i, 2 * i + 2, 2 * i + 3});
+    triangles.push_back({2 * i, 2 * i + 3, 2 * i + 1});
+  }
+  const TriMesh ribbon = test::mesh_from(points, triangles);
+  const Flatness plane = flatness(ribbon);
+  for (const double turn : {0.0, 30.0}) {
+    const LatticeSheet sheet = lattice_sheet(ribbon, plane, 1.0, turn);
+    const TriMesh& m = sheet.mesh;
+    // The lattice direction against the ribbon's axis (the plane's u axis is along the ribbon, either way).
+    const double against_axis = std::fmod(std::abs(sheet.angle_deg) + 360.0, 60.0);
+    EXPECT_NEAR(std::min(against_axis, 60.0 - against_axis), turn == 0 ? 0.0 : 30.0, 1e-9) << "turn " << turn;
+    std::size_t along = 0, across = 0;  // border edges in the middle of the long sides
+    for (auto e : m.edges()) {
+      if (!m.is_boundary(e)) continue;
+      const auto h = m.halfedge_handle(e, 0);
+      const Vec3 p = m.point(m.from_vertex_handle(h)), q = m.point(m.to_vertex_handle(h));
+      if (std::min(p[0], q[0]) < 5 || std::max(p[0], q[0]) > 25) continue;
+      (std::abs(p[1] - q[1]) < 1e-9 ? along : across) += 1;
+    }
+    if (turn == 0) {
+      EXPECT_GT(along, 30u);
+      EXPECT_EQ(across, 0u);
+    } else {
+      EXPECT_EQ(along, 0u);
+      EXPECT_GT(across, 30u);
+    }
+  }
 }

@@ -66,6 +66,54 @@ std::array<std::array<long, 3>, 6> around(long i, long j) {
   return {{{i, j, 0}, {i - 1, j, 1}, {i - 1, j, 0}, {i - 1, j - 1, 1}, {i, j - 1, 0}, {i, j - 1, 1}}};
 }
 
+// Border edges in one run turn by less than this (radians): a straight side tessellated into several edges.
+constexpr double kStraight = 1e-4;  // (coordinates read as single precision bend a straight side by up to ~1e-5)
+
+// The ends of the longest run of consecutive border edges in one direction (a straight side of the outline, however
+// it is tessellated), in the plane; the first such run of the loops in order of their first border halfedge. Throws
+// InputError if there is no border.
+template <typename ToPlane>
+std::pair<Point2, Point2> longest_straight_run(const TriMesh& flat, const ToPlane& to_plane) {
+  std::vector<char> seen(flat.n_halfedges(), 0);
+  double best = -1;
+  std::pair<Point2, Point2> ends;
+  for (auto start : flat.halfedges()) {
+    if (!flat.is_boundary(start) || seen[static_cast<std::size_t>(start.idx())]) continue;
+    std::vector<TriMesh::HalfedgeHandle> loop;
+    for (auto h = start; !seen[static_cast<std::size_t>(h.idx())]; h = flat.next_halfedge_handle(h)) {
+      seen[static_cast<std::size_t>(h.idx())] = 1;
+      loop.push_back(h);
+    }
+    const std::size_t n = loop.size();
+    std::vector<Point2> from(n), to(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      from[k] = to_plane(flat.point(flat.from_vertex_handle(loop[k])));
+      to[k] = to_plane(flat.point(flat.to_vertex_handle(loop[k])));
+    }
+    auto turns = [&](std::size_t k) {  // between edge k - 1 and edge k
+      const std::size_t p = (k + n - 1) % n;
+      const double ux = to[p].x - from[p].x, uy = to[p].y - from[p].y, vx = to[k].x - from[k].x,
+                   vy = to[k].y - from[k].y;
+      return std::abs(std::atan2(ux * vy - uy * vx, ux * vx + uy * vy)) >= kStraight;
+    };
+    std::size_t first = 0;  // a run starts where the border turns (a loop turns somewhere)
+    while (first < n && !turns(first)) ++first;
+    if (first == n) first = 0;
+    for (std::size_t s = 0; s < n;) {
+      const std::size_t k0 = (first + s) % n;
+      double length = 0;
+      std::size_t k = k0;
+      do {
+        length += std::hypot(to[k].x - from[k].x, to[k].y - from[k].y);
+        k = (k + 1) % n, ++s;
+      } while (s < n && !turns(k));
+      if (length > best) best = length, ends = {from[k0], to[(k + n - 1) % n]};
+    }
+  }
+  if (best < 0) throw InputError("the flat surface has no border (a flat surface is open)");
+  return ends;
+}
+
 }  // namespace
 
 Flatness flatness(const TriMesh& mesh) {
@@ -101,26 +149,18 @@ Flatness flatness(const TriMesh& mesh) {
   return out;
 }
 
-LatticeSheet lattice_sheet(const TriMesh& flat, const Flatness& plane, double edge) {
+LatticeSheet lattice_sheet(const TriMesh& flat, const Flatness& plane, double edge, double turn_deg) {
   if (!(edge > 0) || !std::isfinite(edge)) throw InputError(fmt::format("lattice edge {} must be positive", edge));
   auto to_plane = [&](const Vec3& p) {
     const Vec3 d = p - plane.centroid;
     return Point2{OpenMesh::dot(d, plane.u), OpenMesh::dot(d, plane.v)};
   };
-  // The lattice direction: the longest border edge (ties: the first), one lattice line through it.
-  TriMesh::HalfedgeHandle longest;
-  double longest_length = -1;
-  for (auto h : flat.halfedges()) {
-    if (!flat.is_boundary(h)) continue;
-    const double l = flat.calc_edge_length(h);
-    if (l > longest_length) longest_length = l, longest = h;
-  }
-  if (!longest.is_valid()) throw InputError("the flat surface has no border (a flat surface is open)");
-  const Point2 a = to_plane(flat.point(flat.from_vertex_handle(longest)));
-  const Point2 b = to_plane(flat.point(flat.to_vertex_handle(longest)));
+  // The lattice direction: the longest straight run of the border (ties: the first), one lattice line along it.
+  const auto [a, b] = longest_straight_run(flat, to_plane);
   LatticeSheet out;
-  const double angle = std::atan2(b.y - a.y, b.x - a.x);
+  if (!std::isfinite(turn_deg)) throw InputError(fmt::format("lattice turn {} must be a finite angle", turn_deg));
   const double pi = std::acos(-1.0);
+  const double angle = std::atan2(b.y - a.y, b.x - a.x) + turn_deg * pi / 180;
   out.angle_deg = angle * 180 / pi;
   const double third = pi / 3;
   const Lattice lattice{a, {edge * std::cos(angle), edge * std::sin(angle)},

@@ -43,6 +43,7 @@ struct BuildOptions {
   RemeshSettings remesh;
   DualOptimizeSettings optimize;
   bool passivate = false, topology = false, repair = false, no_report = false, lattice = false;
+  std::optional<double> lattice_turn;
   long steps = 10000;
   double temperature = 300.0;
   int np = 4;
@@ -212,8 +213,8 @@ int run_build(BuildOptions& o) {
   RemeshResult remeshed;
   nlohmann::json lattice;  // summary.json's "lattice" (--lattice)
   if (o.lattice) {
-    LatticeStep step = cut_lattice(mesh, source, scaled.edge, EdgeInterval{scaled.emin, scaled.emax},
-                                   20 * area_per_atom(o.bond));
+    LatticeStep step = cut_lattice(mesh, source, scaled.edge, o.lattice_turn.value_or(0.0),
+                                   EdgeInterval{scaled.emin, scaled.emax}, 20 * area_per_atom(o.bond));
     remeshed = step.result;
     lattice = std::move(step.json);
   } else {
@@ -437,7 +438,11 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
   cmd->add_flag("--lattice", opt->lattice,
                 "flat input: cut it from a triangular lattice of edge sqrt(3) b instead of remeshing it (graphene: "
-                "hexagons only; one lattice line along its longest border edge)");
+                "hexagons only; one lattice line along the longest straight side of its outline: a zigzag edge there)");
+  cmd->add_option("--lattice-turn", opt->lattice_turn,
+                  "with --lattice: turn the lattice by this many degrees from the longest straight side (0: a zigzag "
+                  "edge there, 30: an armchair edge; default 0)")
+      ->needs("--lattice");
   cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, orient faces alike, split non-manifold edges and vertices and faces at T-junctions, drop degenerate/duplicate faces");
   cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(non_negative_number());
   cmd->add_option("--temperature", opt->temperature, "deck: temperature (K)")->capture_default_str();

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -28,8 +29,8 @@ struct LatticeStep {
 
 // Replaces the flat `mesh` by the lattice cut to its outline (pieces smaller than `min_area` dropped). Throws
 // InputError naming `source` if the surface is not flat or the cut keeps nothing.
-inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double edge, const EdgeInterval& interval,
-                               double min_area) {
+inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double edge, double turn_deg,
+                               const EdgeInterval& interval, double min_area) {
   const auto start = std::chrono::steady_clock::now();
   const Flatness plane = flatness(mesh);
   if (!is_flat(plane, edge))
@@ -40,7 +41,7 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
   step.result.before = topology(mesh);
   LatticeSheet sheet;
   try {
-    sheet = lattice_sheet(mesh, plane, edge);
+    sheet = lattice_sheet(mesh, plane, edge, turn_deg);
   } catch (const InputError& e) {
     throw InputError(source + ": " + e.what());
   }
@@ -60,9 +61,12 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
   r.percent_regular = valence.percent_regular;
   r.percent_eval_gt1 = valence.percent_eval_gt1;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  spdlog::info("{}: cut from a triangular lattice of edge {:.4f} A at {:.2f} degrees to the plane's first axis (along "
-               "its longest border edge): {} vertices, {} triangles{}",
-               source, edge, sheet.angle_deg, mesh.n_vertices(), mesh.n_faces(),
+  spdlog::info("{}: cut from a triangular lattice of edge {:.4f} A, turned {:g} degrees from its longest straight side "
+               "({}): {} vertices, {} triangles{}",
+               source, edge, turn_deg, std::fmod(std::abs(turn_deg), 60.0) == 0 ? "a zigzag edge there"
+                                       : std::fmod(std::abs(turn_deg), 60.0) == 30 ? "an armchair edge there"
+                                                                                  : "a chiral edge there",
+               mesh.n_vertices(), mesh.n_faces(),
                sheet.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", sheet.dropped)
                                  : std::string());
   if (!r.before.same_type(r.after))
@@ -71,6 +75,7 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
                  source, r.after.genus, r.after.components, r.after.boundary_loops, r.before.genus,
                  r.before.components, r.before.boundary_loops, edge);
   step.json = {{"edge", edge},
+               {"turn_deg", turn_deg},
                {"angle_deg", sheet.angle_deg},
                {"flatness", plane.distance},
                {"dropped_triangles", sheet.dropped},
