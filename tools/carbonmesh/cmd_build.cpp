@@ -235,12 +235,13 @@ int run_build(BuildOptions& o) {
   // Triangles with two border edges (whose atoms would have one bond) off before the dual (carbonmesh/dual/ears.hpp).
   const EarRemoval ears = remove_ears(mesh);
   if (ears.faces > 0)
-    spdlog::info("{}: {} triangles with two border edges removed (area {:.2f} A^2), at corners sharper than the "
-                 "triangles can follow: their atoms would have had one bond",
+    spdlog::info("{}: {} triangles with two border edges removed (area {:.2f} A^2; at corners sharper than the "
+                 "triangles can follow, or teeth of a lattice row the outline cuts): their atoms would have had one "
+                 "bond",
                  source, ears.faces, ears.area);
   if (mesh.n_faces() == 0)
-    throw InputError(source + ": every triangle of the remeshed surface has two border edges (a strip one triangle "
-                              "wide): no carbon net is left; build it larger (--atoms, --size)");
+    throw InputError(source + ": every triangle of the surface has two border edges (a strip one triangle wide): no "
+                              "carbon net is left; build it larger (--atoms, --size)");
   const MeshStats remeshed_stats = mesh_stats(mesh, EdgeInterval{scaled.emin, scaled.emax});
   check_remesh_self_intersections(remeshed_stats.self_intersections, source,
                                   (std::filesystem::path(o.out) / "remeshed.off").string());
