@@ -186,9 +186,8 @@ LatticeSheet lattice_sheet(const TriMesh& flat, const Flatness& plane, double ed
     for (long i = static_cast<long>(std::floor(i0)) - 1; i <= static_cast<long>(std::ceil(i1)); ++i)
       for (long j = static_cast<long>(std::floor(j0)) - 1; j <= static_cast<long>(std::ceil(j1)); ++j)
         for (int down = 0; down < 2; ++down) {
-          const double third = 1.0 / 3, two_thirds = 2.0 / 3;  // the centroid's lattice coordinates
-          const double ci = static_cast<double>(i) + (down ? two_thirds : third);
-          const double cj = static_cast<double>(j) + (down ? two_thirds : third);
+          const double offset = down ? 2.0 / 3 : 1.0 / 3;  // the centroid's lattice coordinates: (i, j) + offset
+          const double ci = static_cast<double>(i) + offset, cj = static_cast<double>(j) + offset;
           if (in_triangle(t, lattice.at(ci, cj))) kept[down].insert(pack(i, j));
         }
   }
