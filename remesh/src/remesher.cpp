@@ -116,6 +116,17 @@ std::optional<Topology> enforce_surface_type(TriMesh& mesh, const BestMesh& best
   return now;
 }
 
+void record_final_figures(RemeshResult& result, const TriMesh& mesh, const EdgeInterval& interval) {
+  const EdgeStats edges = edge_stats(mesh, interval);
+  const ValenceStats valence = valence_stats(mesh);
+  result.long_edges = edges.long_edges;
+  result.short_edges = edges.short_edges;
+  result.converged = result.long_edges + result.short_edges == 0;
+  result.percent_regular = valence.percent_regular;
+  result.percent_eval_gt1 = valence.percent_eval_gt1;
+  result.after = topology(mesh);
+}
+
 RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   validate(s);
   check_size(mesh, s);
@@ -550,14 +561,7 @@ RemeshResult remesh(TriMesh& mesh, const RemeshSettings& s) {
   result.rejected_best = best.rejected();
   forget_projection(mesh);
   mesh.update_normals();
-  edges = edge_stats(mesh, interval);
-  const ValenceStats valence = valence_stats(mesh);
-  result.long_edges = edges.long_edges;
-  result.short_edges = edges.short_edges;
-  result.converged = result.long_edges + result.short_edges == 0;
-  result.percent_regular = valence.percent_regular;
-  result.percent_eval_gt1 = valence.percent_eval_gt1;
-  result.after = topology(mesh);
+  record_final_figures(result, mesh, interval);
   // Started from a post-processed coarse level and left with more than a few edges outside: the level was no start
   // after all (a feature too thin for it, such as a torus tube of radius 0.6 at [0.8, 1.2]: 24 edges outside). The
   // input is remeshed directly, and the better of the two kept. (p > 0 replaces *target: no retry.)

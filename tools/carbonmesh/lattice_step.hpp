@@ -52,14 +52,7 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
                                  "(--atoms, --size)",
                                  source, edge));
   RemeshResult& r = step.result;
-  r.after = topology(mesh);
-  const EdgeStats edges = edge_stats(mesh, interval);
-  r.long_edges = edges.long_edges;
-  r.short_edges = edges.short_edges;
-  r.converged = r.long_edges + r.short_edges == 0;
-  const ValenceStats valence = valence_stats(mesh);
-  r.percent_regular = valence.percent_regular;
-  r.percent_eval_gt1 = valence.percent_eval_gt1;
+  record_final_figures(r, mesh, interval);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   spdlog::info("{}: cut from a triangular lattice of edge {:.4f} A, turned {:g} degrees from its longest straight side "
                "({}): {} vertices, {} triangles{}",

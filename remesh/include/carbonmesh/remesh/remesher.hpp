@@ -193,6 +193,10 @@ class BestMesh {
 // best.mesh() and returns the rejected topology; otherwise leaves it and returns nothing.
 std::optional<Topology> enforce_surface_type(TriMesh& mesh, const BestMesh& best);
 
+// The figures of a finished mesh in `result`: long and short edges against `interval`, converged, the shares of
+// regular vertices and of vertices with Eval > 1, and the topology after.
+void record_final_figures(RemeshResult& result, const TriMesh& mesh, const EdgeInterval& interval);
+
 // Remeshes `mesh` in place. Throws InputError for an invalid interval (emin <= 0 or emin >= emax) or one that
 // would need more than settings.max_faces triangles.
 RemeshResult remesh(TriMesh& mesh, const RemeshSettings& settings);
