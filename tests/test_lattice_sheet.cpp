@@ -13,18 +13,6 @@ using namespace carbonmesh;
 
 namespace {
 
-// `mesh` turned about the axis (1, 2, 3) by 0.7 rad and shifted: a flat sheet in no coordinate plane.
-TriMesh tilted(TriMesh mesh) {
-  Vec3 k(1, 2, 3);
-  k.normalize();
-  const double c = std::cos(0.7), s = std::sin(0.7);
-  for (auto v : mesh.vertices()) {
-    const Vec3 p = mesh.point(v);  // Rodrigues' rotation
-    mesh.set_point(v, c * p + s * OpenMesh::cross(k, p) + (1 - c) * OpenMesh::dot(k, p) * k + Vec3(5, -3, 2));
-  }
-  return mesh;
-}
-
 Vec3 face_normal(const TriMesh& mesh, TriMesh::FaceHandle f) {
   const auto h = mesh.halfedge_handle(f);
   const Vec3 a = mesh.point(mesh.from_vertex_handle(h)), b = mesh.point(mesh.to_vertex_handle(h)),
@@ -35,7 +23,7 @@ Vec3 face_normal(const TriMesh& mesh, TriMesh::FaceHandle f) {
 }  // namespace
 
 TEST(LatticeSheet, ATiltedFlakeIsCutIntoEqualTrianglesInItsPlane) {
-  const TriMesh flake = tilted(test::triangle_sheet(6, 20.0));
+  const TriMesh flake = test::tilted(test::triangle_sheet(6, 20.0));
   const Flatness plane = flatness(flake);
   EXPECT_LT(plane.distance, 1e-9);
   const Vec3 input_normal = face_normal(flake, *flake.faces().begin());

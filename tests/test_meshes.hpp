@@ -62,6 +62,18 @@ inline TriMesh radial_noise(TriMesh mesh, double sigma, unsigned seed) {
   return mesh;
 }
 
+// `mesh` turned about the axis (1, 2, 3) by 0.7 rad and shifted by (5, -3, 2): in no coordinate plane or axis.
+inline TriMesh tilted(TriMesh mesh) {
+  Vec3 k(1, 2, 3);
+  k.normalize();
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  for (auto v : mesh.vertices()) {
+    const Vec3 p = mesh.point(v);  // Rodrigues' rotation
+    mesh.set_point(v, c * p + s * OpenMesh::cross(k, p) + (1 - c) * OpenMesh::dot(k, p) * k + Vec3(5, -3, 2));
+  }
+  return mesh;
+}
+
 // A flat equilateral triangle of side `side` in the z = 0 plane, cut into n^2 equilateral triangles (n per side),
 // facing +z: its three corners are 60 degrees, each a triangle with two border edges.
 inline TriMesh triangle_sheet(int n, double side) {
