@@ -124,8 +124,9 @@ Ring make_ring(TriMesh& mesh, const Vec3& center, const Frame& frame, double rad
 }
 
 // A tube of `radius` around the polyline `centers`, `segments` vertices around, neighbouring rings offset by
-// half a step (equilateral-like triangles). Open tubes are closed by hemispherical caps.
-TriMesh sweep_tube(const std::vector<Vec3>& centers, bool closed, double radius, std::size_t segments) {
+// half a step (equilateral-like triangles). Open tubes are closed by hemispherical caps if `caps`.
+TriMesh sweep_tube(const std::vector<Vec3>& centers, bool closed, double radius, std::size_t segments,
+                   bool caps = true) {
   TriMesh mesh;
   const std::size_t n = centers.size();
   const auto frames = transport_frames(centers, closed);
@@ -141,7 +142,7 @@ TriMesh sweep_tube(const std::vector<Vec3>& centers, bool closed, double radius,
     if (closed) offset -= twist * static_cast<double>(i) / static_cast<double>(n);
     rings.push_back(make_ring(mesh, centers[i], frames[i], radius, segments, offset));
   }
-  if (!closed) {
+  if (!closed && caps) {
     // Caps: rings shrinking along a quarter circle, down to a pole vertex.
     const double spacing = step * radius * std::sqrt(3.0) / 2.0;
     const std::size_t k_max = std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(M_PI / 2 * radius / spacing)));
@@ -420,8 +421,20 @@ TriMesh make_capsule(const CapsuleShape& shape) {
   return sweep_tube(centers, false, shape.radius, segments);
 }
 
+TriMesh make_open_tube(const TubeShape& shape) {
+  require_positive(shape.radius, "tube radius");
+  require_positive(shape.length, "tube length");
+  const std::size_t segments = segments_for(shape.radius, shape.edge, 24);
+  const std::size_t rings = std::max<std::size_t>(
+      2, static_cast<std::size_t>(std::lround(shape.length / ring_spacing(shape.radius, segments))) + 1);
+  std::vector<Vec3> centers;
+  for (std::size_t i = 0; i < rings; ++i)
+    centers.emplace_back(0.0, 0.0, -shape.length / 2 + shape.length * static_cast<double>(i) / static_cast<double>(rings - 1));
+  return sweep_tube(centers, false, shape.radius, segments, false);
+}
+
 const std::vector<std::string>& shape_names() {
-  static const std::vector<std::string> names = {"sphere", "geodesic", "torus", "helix", "capsule"};
+  static const std::vector<std::string> names = {"sphere", "geodesic", "torus", "helix", "capsule", "tube"};
   return names;
 }
 

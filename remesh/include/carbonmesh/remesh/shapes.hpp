@@ -1,6 +1,6 @@
 #pragma once
-// Built-in shapes: closed, well-shaped triangle meshes generated in code. They are the default input of
-// `make run` and the fixtures of the tests; the repository ships no other models.
+// Built-in shapes: well-shaped triangle meshes generated in code, closed but for the open tube. They are the default
+// input of `make run` and the fixtures of the tests; the repository ships no other models.
 #include <string>
 #include <vector>
 
@@ -57,7 +57,16 @@ struct CapsuleShape {
 };
 TriMesh make_capsule(const CapsuleShape& shape);
 
-// Names accepted by make_shape: "sphere", "torus", "helix", "capsule".
+// An open cylinder (no caps: two borders, the rims) of radius `radius` and length `length` (genus 0); neighbouring
+// rings offset by half a step, so most triangles are not parallel to the axis.
+struct TubeShape {
+  double radius = 5.0;
+  double length = 20.0;
+  double edge = 0.0;  // target edge length (0: 24 segments around)
+};
+TriMesh make_open_tube(const TubeShape& shape);
+
+// The names of the built-in shapes of `carbonmesh shape`.
 const std::vector<std::string>& shape_names();
 
 }  // namespace carbonmesh

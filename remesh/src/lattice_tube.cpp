@@ -1,0 +1,246 @@
+// A cylindrical surface cut from a triangular lattice rolled into a tube (carbonmesh/remesh/lattice_tube.hpp).
+#include "carbonmesh/remesh/lattice_tube.hpp"
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+#include <unsupported/Eigen/NonLinearOptimization>
+#include <unsupported/Eigen/NumericalDiff>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "carbonmesh/remesh/error.hpp"
+#include "lattice_cut.hpp"
+
+namespace carbonmesh {
+namespace {
+
+using lattice::Point2;
+using lattice::Triangle2;
+
+Vec3 area_normal(const TriMesh& mesh, TriMesh::FaceHandle f) {  // twice the area, along the normal
+  const auto h = mesh.halfedge_handle(f);
+  const Vec3 a = mesh.point(mesh.from_vertex_handle(h)), b = mesh.point(mesh.to_vertex_handle(h)),
+             c = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+  return OpenMesh::cross(b - a, c - a);
+}
+
+Vec3 face_centroid(const TriMesh& mesh, TriMesh::FaceHandle f) {
+  Vec3 c(0, 0, 0);
+  for (auto v : mesh.fv_range(f)) c += mesh.point(v);
+  return c / 3.0;
+}
+
+// A unit vector square to the unit vector w: the coordinate axis least along w, its part along w taken off.
+Vec3 square_to(const Vec3& w) {
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(w[i]) < std::abs(w[k])) k = i;
+  Vec3 e(0, 0, 0);
+  e[k] = 1;
+  return (e - OpenMesh::dot(e, w) * w).normalized();
+}
+
+// The residuals of the cylinder fit: each vertex's distance to the axis less the radius. Parameters (alpha, beta,
+// x, y, r): the axis axis0 + alpha u0 + beta v0 (normalised) through centre + x u0 + y v0, the radius r.
+struct CylinderResiduals {
+  using Scalar = double;
+  using InputType = Eigen::VectorXd;
+  using ValueType = Eigen::VectorXd;
+  using JacobianType = Eigen::MatrixXd;
+  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+
+  const std::vector<Eigen::Vector3d>* points;  // relative to `centre`
+  Eigen::Vector3d axis0, u0, v0;
+
+  int inputs() const { return 5; }
+  int values() const { return static_cast<int>(points->size()); }
+  Eigen::Vector3d axis(const Eigen::VectorXd& x) const { return (axis0 + x[0] * u0 + x[1] * v0).normalized(); }
+  int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& f) const {
+    const Eigen::Vector3d w = axis(x), p = x[2] * u0 + x[3] * v0;
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      const Eigen::Vector3d d = (*points)[i] - p;
+      f[static_cast<Eigen::Index>(i)] = (d - d.dot(w) * w).norm() - x[4];
+    }
+    return 0;
+  }
+};
+
+Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
+Vec3 vec3(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
+
+}  // namespace
+
+Cylinder cylinder_fit(const TriMesh& mesh) {
+  Cylinder out;
+  if (mesh.n_vertices() < 6 || mesh.n_faces() < 2) return out;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (auto v : mesh.vertices()) centre += eigen(mesh.point(v));
+  centre /= static_cast<double>(mesh.n_vertices());
+  // A first axis: the direction the faces' normals are most square to (area weighted).
+  Eigen::Matrix3d normals = Eigen::Matrix3d::Zero();
+  for (auto f : mesh.faces()) {
+    const Eigen::Vector3d n = eigen(area_normal(mesh, f));
+    if (const double twice_area = n.norm(); twice_area > 0) normals += n * n.transpose() / twice_area;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(normals);
+  CylinderResiduals residuals;
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) points.push_back(eigen(mesh.point(v)) - centre);
+  residuals.points = &points;
+  residuals.axis0 = solver.eigenvectors().col(0);
+  residuals.u0 = eigen(square_to(vec3(residuals.axis0)));
+  residuals.v0 = residuals.axis0.cross(residuals.u0);
+  // A first circle: the algebraic fit x^2 + y^2 + D x + E y + F = 0 of the points seen along that axis.
+  Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d row(p.dot(residuals.u0), p.dot(residuals.v0), 1.0);
+    normal_matrix += row * row.transpose();
+    rhs -= row * (row[0] * row[0] + row[1] * row[1]);
+  }
+  const Eigen::Vector3d def = normal_matrix.ldlt().solve(rhs);
+  Eigen::VectorXd x(5);
+  x << 0, 0, -def[0] / 2, -def[1] / 2, std::sqrt(std::max(0.0, def[0] * def[0] / 4 + def[1] * def[1] / 4 - def[2]));
+  if (!x.allFinite() || !(x[4] > 0)) return out;
+  // The least-squares cylinder (Levenberg-Marquardt, forward differences).
+  Eigen::NumericalDiff<CylinderResiduals> differences(residuals);
+  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<CylinderResiduals>> solve(differences);
+  solve.parameters.xtol = 1e-14;
+  solve.parameters.ftol = 1e-14;
+  solve.parameters.maxfev = 2000;
+  solve.minimize(x);
+  if (!x.allFinite()) return out;
+  Eigen::Vector3d axis = residuals.axis(x);
+  Eigen::Index largest = 0;
+  axis.cwiseAbs().maxCoeff(&largest);
+  if (axis[largest] < 0) axis = -axis;
+  out.axis = vec3(axis);
+  out.point = vec3(centre + x[2] * residuals.u0 + x[3] * residuals.v0);
+  out.point -= OpenMesh::dot(out.point - vec3(centre), out.axis) * out.axis;  // level with the centroid
+  out.radius = std::abs(x[4]);
+  Eigen::VectorXd f(points.size());
+  residuals(x, f);
+  out.distance = f.cwiseAbs().maxCoeff();
+  if (!(out.radius > 0) || !std::isfinite(out.distance)) out.distance = std::numeric_limits<double>::infinity();
+  return out;
+}
+
+double chiral_circumference(Chirality c, double edge) {
+  const double n = c.n, m = c.m;
+  return edge * std::sqrt(n * n + n * m + m * m);
+}
+
+double chiral_angle_deg(Chirality c) {
+  return std::atan2(std::sqrt(3.0) * c.m, 2.0 * c.n + c.m) * 180 / std::acos(-1.0);
+}
+
+Chirality nearest_chirality(double radius, double edge) {
+  const double target = 2 * std::acos(-1.0) * radius / edge;  // the circumference in lattice edges
+  const double norm = target * target;                         // n^2 + nm + m^2 wanted
+  Chirality best{2, 1};
+  double best_miss = std::abs(std::sqrt(7.0) - target);
+  auto consider = [&](long n, long m) {
+    if (m < 0 || m > n || n * n + n * m + m * m < kMinChiralNorm) return;
+    const double miss = std::abs(chiral_circumference({static_cast<int>(n), static_cast<int>(m)}, 1.0) - target);
+    if (miss < best_miss || (miss == best_miss && m < best.m)) best = {static_cast<int>(n), static_cast<int>(m)};
+    best_miss = std::min(best_miss, miss);
+  };
+  // With m <= n, n^2 <= n^2 + nm + m^2 <= 3 n^2: n lies in [sqrt(norm / 3), sqrt(norm)]; for each n the m nearest
+  // the wanted norm are the two integers around the root of m^2 + n m + n^2 - norm = 0.
+  const long low = std::max(0L, static_cast<long>(std::floor(std::sqrt(norm / 3))) - 2);
+  const long high = static_cast<long>(std::ceil(std::sqrt(norm))) + 2;
+  for (long n = low; n <= high; ++n) {
+    const double root = (-static_cast<double>(n) + std::sqrt(std::max(0.0, 4 * norm - 3.0 * n * n))) / 2;
+    consider(n, static_cast<long>(std::floor(root)));
+    consider(n, static_cast<long>(std::ceil(root)));
+    consider(n, 0);
+    consider(n, n);
+  }
+  return best;
+}
+
+LatticeTube lattice_tube(const TriMesh& input, const Cylinder& cylinder, double edge, Chirality chirality) {
+  if (!(edge > 0) || !std::isfinite(edge)) throw InputError(fmt::format("lattice edge {} must be positive", edge));
+  const long n = chirality.n, m = chirality.m;
+  if (n < 0 || m < 0 || n * n + n * m + m * m < kMinChiralNorm)
+    throw InputError(fmt::format("chirality ({}, {}) makes no tube: n and m must be >= 0 with n^2 + nm + m^2 >= {} "
+                                 "(the thinnest is (2, 1))",
+                                 n, m, kMinChiralNorm));
+  const double pi = std::acos(-1.0);
+  const double period = chiral_circumference(chirality, edge);  // P, the circumference
+  LatticeTube out;
+  out.chirality = chirality;
+  out.radius = period / (2 * pi);
+  const Vec3 w = cylinder.axis, u = square_to(w), v = OpenMesh::cross(w, u);  // u x v = w
+  auto unrolled = [&](const Vec3& q) {  // (s, z): the arc around the axis, scaled to the tube, and the height
+    const Vec3 d = q - cylinder.point;
+    return Point2{std::atan2(OpenMesh::dot(d, v), OpenMesh::dot(d, u)) * period / (2 * pi), OpenMesh::dot(d, w)};
+  };
+
+  // The input unrolled, each triangle in one piece (its corners within half a circumference of its first).
+  std::vector<Triangle2> region;
+  double facing = 0;  // > 0: the faces face out of the tube
+  for (auto f : input.faces()) {
+    Triangle2 t;
+    int k = 0;
+    for (auto vh : input.fv_range(f)) t[static_cast<std::size_t>(k++)] = unrolled(input.point(vh));
+    for (std::size_t c = 1; c < 3; ++c) t[c].x -= period * std::round((t[c].x - t[0].x) / period);
+    region.push_back(t);
+    const Vec3 centroid = face_centroid(input, f), d = centroid - cylinder.point;
+    facing += OpenMesh::dot(area_normal(input, f), d - OpenMesh::dot(d, w) * w);
+  }
+
+  // A lattice point at the vertex lowest along the axis; the chiral vector n e1 + m e2 along s.
+  Point2 origin;
+  double z0 = std::numeric_limits<double>::infinity(), z1 = -z0;
+  for (auto vh : input.vertices()) {
+    const Point2 p = unrolled(input.point(vh));
+    if (p.y < z0) z0 = p.y, origin = p;
+    z1 = std::max(z1, p.y);
+  }
+  const Point2 e1{edge, 0}, e2{edge / 2, edge * std::sqrt(3.0) / 2};
+  const Point2 along{(n * e1.x + m * e2.x) / period, (n * e1.y + m * e2.y) / period};  // unit, along the chiral vector
+  auto turned = [&](Point2 e) { return Point2{e.x * along.x + e.y * along.y, -e.x * along.y + e.y * along.x}; };
+  const lattice::Lattice lattice{origin, turned(e1), turned(e2)};
+  const lattice::Period rolled{n, m};
+  const lattice::InsideTriangles inside = lattice::triangles_inside(region, lattice, rolled);
+  out.dropped = inside.dropped;
+  auto rolled_up = [&](double s, double z) {
+    const double theta = 2 * pi * s / period;
+    return cylinder.point + out.radius * (std::cos(theta) * u + std::sin(theta) * v) + z * w;
+  };
+  out.mesh = lattice::lattice_mesh(
+      inside, rolled,
+      [&](long i, long j) {
+        const Point2 p = lattice.at(static_cast<double>(i), static_cast<double>(j));
+        return rolled_up(p.x, p.y);
+      },
+      facing < 0);
+
+  // The surface: the tube's cylinder one edge beyond the input's ends, its chords within 1e-4 edge of the circle.
+  const double step = 2 * std::acos(std::max(-1.0, 1 - 1e-4 * edge / out.radius));
+  const int segments = static_cast<int>(std::clamp(std::ceil(2 * pi / step), 16.0, 1e6));
+  std::vector<TriMesh::VertexHandle> low, high;
+  for (int k = 0; k < segments; ++k) {
+    const double s = period * k / segments;
+    low.push_back(out.surface.add_vertex(rolled_up(s, z0 - edge)));
+    high.push_back(out.surface.add_vertex(rolled_up(s, z1 + edge)));
+  }
+  for (int k = 0; k < segments; ++k) {
+    const auto b0 = low[static_cast<std::size_t>(k)], b1 = low[static_cast<std::size_t>((k + 1) % segments)],
+               t0 = high[static_cast<std::size_t>(k)], t1 = high[static_cast<std::size_t>((k + 1) % segments)];
+    if (facing < 0) {
+      out.surface.add_face(b0, t1, b1);
+      out.surface.add_face(b0, t0, t1);
+    } else {
+      out.surface.add_face(b0, b1, t1);
+      out.surface.add_face(b0, t1, t0);
+    }
+  }
+  return out;
+}
+
+}  // namespace carbonmesh
