@@ -4,12 +4,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "carbonmesh/carbon/lammps_data.hpp"
@@ -189,6 +191,55 @@ TEST(BuildCommand, LatticeCutsAFlatFlakeIntoGraphene) {
   save_mesh(open_hemisphere(), dir / "cap.off");
   EXPECT_EQ(run("build " + (dir / "cap.off").string() + " -o " + (dir / "cap").string() + " --lattice"), 2);
   EXPECT_FALSE(fs::exists(dir / "cap" / "summary.json"));
+  fs::remove_all(dir);
+}
+
+// An open tube of radius 3.39 A: --lattice rolls the lattice into a (5, 5) armchair nanotube (the indices nearest that
+// radius), hexagons only, every bond 1.42 A; --chirality 9,0 gives the zigzag tube of radius 3.52 A instead. The
+// deck runs with every atom keeping its neighbours. A flat sheet takes no --chirality, a tube no --lattice-turn.
+TEST(BuildCommand, LatticeRollsAnOpenTubeIntoANanotube) {
+  const fs::path dir = temp_dir("lattice_tube");
+  save_mesh(make_open_tube({3.39, 25.0, 0.0}), dir / "tube.off");
+  const double pi = std::acos(-1.0), a = std::sqrt(3.0) * 1.42;
+  for (const auto& [indices, n, m] : {std::tuple<std::string, int, int>{"", 5, 5}, {"9,0", 9, 0}}) {
+    const fs::path out = dir / ("out" + indices);
+    ASSERT_EQ(run("build " + (dir / "tube.off").string() + " -o " + out.string() + " --lattice --no-report --steps 100" +
+                  (indices.empty() ? "" : " --chirality " + indices)),
+              0);
+    const nlohmann::json s = read_json(out / "summary.json");
+    ASSERT_TRUE(s.contains("lattice"));
+    EXPECT_EQ(s["lattice"]["kind"], "tube");
+    EXPECT_EQ(s["lattice"]["chirality"][0], n);
+    EXPECT_EQ(s["lattice"]["chirality"][1], m);
+    EXPECT_NEAR(s["lattice"]["radius"].get<double>(), a * std::sqrt(n * n + n * m + m * m) / (2 * pi), 1e-9);
+    EXPECT_NEAR(s["lattice"]["input_radius"].get<double>(), 3.39, 1e-6);
+    ASSERT_EQ(s["rings_by_size"].size(), 1u);
+    EXPECT_GT(s["rings_by_size"]["6"].get<int>(), 80);
+    for (const auto& [bonds, count] : s["dual"]["atoms_by_bond_count"].items()) EXPECT_GE(std::stoi(bonds), 2);
+    EXPECT_NEAR(s["optimization"]["bonds_after"]["min"].get<double>(), 1.42, 0.01);
+    EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, 0.01);
+    EXPECT_EQ(s["optimization"]["strained_atoms_after"], 0);
+    EXPECT_EQ(s["borders"], 2);
+    if (std::system("command -v lmp > /dev/null 2>&1") == 0) {
+      const std::string lmp = "cd '" + out.string() + "' && lmp -in in.rebo -log log.lammps -screen none";
+      ASSERT_EQ(std::system(lmp.c_str()), 0);
+      const DumpFrame f = read_last_dump_frame(out / "dump.rebo.lammpstrj");
+      const std::size_t atoms = s["atoms"];
+      ASSERT_EQ(f.positions.size(), atoms);
+      const std::vector<int> before = neighbour_counts(read_lammps_data(out / "structure.data").positions, 1.85);
+      const std::vector<int> after = neighbour_counts(f.positions, 1.85);
+      for (std::size_t i = 0; i < atoms; ++i) EXPECT_EQ(after[i], before[i]) << "atom " << i + 1;
+    }
+  }
+  EXPECT_EQ(run("build " + (dir / "tube.off").string() + " -o " + (dir / "turned").string() +
+                " --lattice --lattice-turn 30"),
+            2);
+  save_mesh(test::triangle_sheet(10, 25.0), dir / "flake.off");
+  EXPECT_EQ(run("build " + (dir / "flake.off").string() + " -o " + (dir / "rolled").string() +
+                " --lattice --chirality 5,5"),
+            2);
+  EXPECT_FALSE(fs::exists(dir / "turned" / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "rolled" / "summary.json"));
   fs::remove_all(dir);
 }
 

@@ -10,6 +10,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <vector>
 
 #include "carbonmesh/carbon/output_files.hpp"
 #include "carbonmesh/carbon/passivate.hpp"
@@ -44,6 +45,7 @@ struct BuildOptions {
   DualOptimizeSettings optimize;
   bool passivate = false, topology = false, repair = false, no_report = false, lattice = false;
   std::optional<double> lattice_turn;
+  std::vector<int> chirality;  // --chirality N,M (empty: the nearest to the input's radius)
   long steps = 10000;
   double temperature = 300.0;
   int np = 4;
@@ -178,7 +180,7 @@ int run_build(BuildOptions& o) {
     spdlog::warn("{}: removed {} component{} smaller than a C20 cage ({:.1f} A^2): {} faces, {:.3g} A^2 in all",
                  source, debris.removed, debris.removed == 1 ? "" : "s", 20 * area_per_atom(o.bond), debris.faces,
                  debris.area);
-  const TriMesh surface = mesh;  // the surface the atoms stay on
+  TriMesh surface = mesh;  // the surface the atoms stay on (a lattice tube's: its cylinder)
   clock.stop("scale");
 
   // Remesh.
@@ -213,14 +215,21 @@ int run_build(BuildOptions& o) {
   RemeshResult remeshed;
   nlohmann::json lattice;  // summary.json's "lattice" (--lattice)
   if (o.lattice) {
-    LatticeStep step = cut_lattice(mesh, source, scaled.edge, o.lattice_turn.value_or(0.0),
-                                   EdgeInterval{scaled.emin, scaled.emax}, 20 * area_per_atom(o.bond));
+    LatticeOptions options{o.lattice_turn, std::nullopt};
+    if (!o.chirality.empty()) options.chirality = Chirality{o.chirality[0], o.chirality[1]};
+    LatticeStep step = cut_lattice(mesh, source, scaled.edge, options, EdgeInterval{scaled.emin, scaled.emax},
+                                   20 * area_per_atom(o.bond));
     remeshed = step.result;
     lattice = std::move(step.json);
+    if (step.surface) surface = std::move(*step.surface);
   } else {
     if (!o.in.empty() && is_flat(flatness(mesh), scaled.edge))
       spdlog::info("{}: the surface is flat: --lattice cuts it from a triangular lattice instead of remeshing it (a "
                    "graphene sheet of hexagons only, no 5-7 pairs)",
+                   source);
+    else if (!o.in.empty() && has_border(mesh) && is_cylinder(mesh, cylinder_fit(mesh), scaled.edge))
+      spdlog::info("{}: the surface is a cylinder: --lattice rolls a triangular lattice onto it instead of remeshing "
+                   "it (a nanotube of hexagons only, no 5-7 pairs; --chirality N,M sets its indices)",
                    source);
     try {
       remeshed = remesh(mesh, o.remesh);
@@ -438,11 +447,19 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_flag("--topology", opt->topology, "also write structure-full.data: atom_style full with Bonds and Angles (other force fields)");
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
   cmd->add_flag("--lattice", opt->lattice,
-                "flat input: cut it from a triangular lattice of edge sqrt(3) b instead of remeshing it (graphene: "
-                "hexagons only; one lattice line along the longest straight side of its outline: a zigzag edge there)");
+                "flat or cylindrical input: cut it from a triangular lattice of edge sqrt(3) b, flat or rolled into "
+                "a tube, instead of remeshing it (graphene or a nanotube: hexagons only; a flat sheet has one lattice "
+                "line along the longest straight side of its outline: a zigzag edge there)");
   cmd->add_option("--lattice-turn", opt->lattice_turn,
-                  "with --lattice: turn the lattice by this many degrees from the longest straight side (0: a zigzag "
-                  "edge there, 30: an armchair edge; default 0)")
+                  "with --lattice on a flat input: turn the lattice by this many degrees from the longest straight "
+                  "side (0: a zigzag edge there, 30: an armchair edge; default 0)")
+      ->needs("--lattice");
+  cmd->add_option("--chirality", opt->chirality,
+                  "with --lattice on a cylindrical input: the tube's chiral indices N,M (N,0 zigzag, N,N armchair; "
+                  "radius sqrt(3) b sqrt(N^2 + NM + M^2) / (2 pi); default: the indices nearest the input's radius)")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(non_negative_number())
       ->needs("--lattice");
   cmd->add_flag("--repair", opt->repair, "merge duplicate and nearly coincident vertices, orient faces alike, split non-manifold edges and vertices and faces at T-junctions, drop degenerate/duplicate faces");
   cmd->add_option("--steps", opt->steps, "deck: NVT steps of 1 fs")->capture_default_str()->check(non_negative_number());

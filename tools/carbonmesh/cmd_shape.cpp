@@ -1,4 +1,4 @@
-// `carbonmesh shape sphere|geodesic|torus|helix|capsule [size options] -o OUT`
+// `carbonmesh shape sphere|geodesic|torus|helix|capsule|tube [size options] -o OUT`
 #include <spdlog/spdlog.h>
 
 #include "carbonmesh/remesh/io.hpp"
@@ -15,15 +15,16 @@ void add_shape_command(CLI::App& app, Action& action) {
     TorusShape torus;
     HelixShape helix;
     CapsuleShape capsule;
+    TubeShape tube;
     double edge = 0;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("shape", "write a built-in closed shape (sizes in the mesh's units, e.g. A)");
-  cmd->add_option("name", opt->name, "sphere | geodesic | torus | helix | capsule")
+  auto* cmd = app.add_subcommand("shape", "write a built-in shape, closed but for the open tube (sizes in the mesh's units, e.g. A)");
+  cmd->add_option("name", opt->name, "sphere | geodesic | torus | helix | capsule | tube (an open cylinder)")
       ->required()
       ->check(CLI::IsMember(shape_names()));
   cmd->add_option("-o,--output", opt->output, "output mesh (.off .obj .ply .stl)")->required();
-  cmd->add_option("--radius", opt->sphere.radius, "sphere and geodesic radius / helix radius / capsule radius (mesh units, e.g. A)")
+  cmd->add_option("--radius", opt->sphere.radius, "sphere and geodesic radius / helix radius / capsule and tube radius (mesh units, e.g. A)")
       ->capture_default_str();
   cmd->add_option("--subdivisions", opt->sphere.subdivisions, "sphere: icosahedron subdivisions (0-9; 20*4^k faces)")
       ->capture_default_str();
@@ -36,8 +37,8 @@ void add_shape_command(CLI::App& app, Action& action) {
   cmd->add_option("--pitch", opt->helix.pitch, "helix: rise per turn (mesh units)")->capture_default_str();
   cmd->add_option("--turns", opt->helix.turns, "helix: number of turns (may be fractional)")->capture_default_str();
   cmd->add_option("--tube-radius", opt->helix.tube_radius, "helix: tube radius (mesh units)")->capture_default_str();
-  cmd->add_option("--length", opt->capsule.length, "capsule: length of the straight part (mesh units)")->capture_default_str();
-  cmd->add_option("--edge", opt->edge, "torus/helix/capsule: target edge length, mesh units (0: default resolution)")
+  cmd->add_option("--length", opt->capsule.length, "capsule: length of the straight part; tube: length (mesh units)")->capture_default_str();
+  cmd->add_option("--edge", opt->edge, "torus/helix/capsule/tube: target edge length, mesh units (0: default resolution)")
       ->capture_default_str();
   cmd->callback([&action, opt, cmd] {
     action = [opt, cmd]() -> int {
@@ -55,10 +56,13 @@ void add_shape_command(CLI::App& app, Action& action) {
         if (radius_given) opt->helix.radius = opt->sphere.radius;
         opt->helix.edge = opt->edge;
         mesh = make_helix(opt->helix);
-      } else {
+      } else if (opt->name == "capsule") {
         if (radius_given) opt->capsule.radius = opt->sphere.radius;
         opt->capsule.edge = opt->edge;
         mesh = make_capsule(opt->capsule);
+      } else {
+        opt->tube = {radius_given ? opt->sphere.radius : opt->tube.radius, opt->capsule.length, opt->edge};
+        mesh = make_open_tube(opt->tube);
       }
       save_mesh(mesh, opt->output);
       spdlog::info("{}: {} with {} vertices, {} faces", opt->output, opt->name, mesh.n_vertices(), mesh.n_faces());

@@ -1,17 +1,20 @@
-#pragma once
-// `build --lattice`: a flat input cut from a triangular lattice of edge a = sqrt(3) b instead of remeshed
-// (carbonmesh/remesh/lattice_sheet.hpp), and the hint `build` gives for a flat input without it.
+// `build --lattice`: a flat input cut from a triangular lattice of edge a = sqrt(3) b, or a cylindrical one from that
+// lattice rolled into a tube, instead of remeshed (carbonmesh/remesh/lattice_sheet.hpp, lattice_tube.hpp), and the
+// hint `build` gives for such an input without it.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/lattice_sheet.hpp"
+#include "carbonmesh/remesh/lattice_tube.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesher.hpp"
 
@@ -22,23 +25,47 @@ constexpr double kFlatShare = 1e-3;
 
 inline bool is_flat(const Flatness& plane, double edge) { return plane.distance <= kFlatShare * edge; }
 
+// A surface is cylindrical when it has a border (a closed surface cannot lie on a cylinder), no vertex is farther
+// from the cylinder that fits it best than kFlatShare of the lattice edge, and that cylinder's circumference is at
+// most kMaxTubeEdges lattice edges (beyond, the surface is as good as flat and the chiral indices run past 10^8).
+constexpr double kMaxTubeEdges = 1e8;
+
+inline bool has_border(const TriMesh& mesh) {
+  return std::any_of(mesh.halfedges_begin(), mesh.halfedges_end(), [&](auto h) { return mesh.is_boundary(h); });
+}
+
+inline bool is_cylinder(const TriMesh& mesh, const Cylinder& cylinder, double edge) {
+  return has_border(mesh) && cylinder.distance <= kFlatShare * edge &&
+         2 * std::acos(-1.0) * cylinder.radius <= kMaxTubeEdges * edge;
+}
+
+// What the user asked of the lattice: a flat sheet's turn, a tube's chiral indices (each default when not given).
+struct LatticeOptions {
+  std::optional<double> turn_deg;
+  std::optional<Chirality> chirality;
+};
+
 struct LatticeStep {
   RemeshResult result;  // the figures a remesh would give (0 iterations)
   nlohmann::json json;  // summary.json's "lattice"
+  std::optional<TriMesh> surface;  // a tube's: its cylinder, for the atoms to stay on instead of the input
 };
 
-// Replaces the flat `mesh` by the lattice cut to its outline (pieces smaller than `min_area` dropped). Throws
-// InputError naming `source` if the surface is not flat or the cut keeps nothing.
-inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double edge, double turn_deg,
-                               const EdgeInterval& interval, double min_area) {
-  const auto start = std::chrono::steady_clock::now();
-  const Flatness plane = flatness(mesh);
-  if (!is_flat(plane, edge))
-    throw InputError(fmt::format("{}: --lattice needs a flat surface, and a vertex is {:.4g} A from the plane that "
-                                 "fits it best (more than {:.2g} A)",
-                                 source, plane.distance, kFlatShare * edge));
-  LatticeStep step;
-  step.result.before = topology(mesh);
+namespace detail {
+
+inline std::string edge_kind(double angle_deg) {
+  const double turn = std::fmod(std::abs(angle_deg), 60.0);
+  return turn == 0 ? "zigzag" : turn == 30 ? "armchair" : "chiral";
+}
+
+// A flat `mesh` replaced by the lattice cut to its outline; summary.json's "lattice".
+inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const Flatness& plane, double edge,
+                                const LatticeOptions& options) {
+  if (options.chirality)
+    throw InputError(fmt::format("{}: --chirality rolls the lattice onto a cylindrical surface, and this one is flat "
+                                 "(--lattice-turn turns a flat sheet's lattice)",
+                                 source));
+  const double turn_deg = options.turn_deg.value_or(0.0);
   LatticeSheet sheet;
   try {
     sheet = lattice_sheet(mesh, plane, edge, turn_deg);
@@ -46,6 +73,85 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
     throw InputError(source + ": " + e.what());
   }
   mesh = std::move(sheet.mesh);
+  spdlog::info("{}: cut from a triangular lattice of edge {:.4f} A, turned {:g} degrees from its longest straight side "
+               "(a {} edge there): {} vertices, {} triangles{}",
+               source, edge, turn_deg, edge_kind(turn_deg), mesh.n_vertices(), mesh.n_faces(),
+               sheet.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", sheet.dropped)
+                                 : std::string());
+  return {{"kind", "sheet"},
+          {"edge", edge},
+          {"turn_deg", turn_deg},
+          {"angle_deg", sheet.angle_deg},
+          {"flatness", plane.distance},
+          {"dropped_triangles", sheet.dropped}};
+}
+
+// A cylindrical `mesh` replaced by the rolled lattice cut to its outline, `surface` by the tube's cylinder;
+// summary.json's "lattice".
+inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
+                               const Cylinder& cylinder, double edge, const LatticeOptions& options) {
+  if (options.turn_deg)
+    throw InputError(fmt::format("{}: --lattice-turn turns a flat sheet's lattice, and this surface is a cylinder "
+                                 "(--chirality N,M sets a tube's)",
+                                 source));
+  const Chirality chirality = options.chirality.value_or(nearest_chirality(cylinder.radius, edge));
+  LatticeTube tube;
+  try {
+    tube = lattice_tube(mesh, cylinder, edge, chirality);
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+  mesh = std::move(tube.mesh);
+  surface = std::move(tube.surface);
+  const double angle = chiral_angle_deg(chirality);
+  spdlog::info("{}: rolled from a triangular lattice of edge {:.4f} A into a ({}, {}) tube ({}, chiral angle {:.2f} "
+               "degrees) of radius {:.4f} A (the input's {:.4f} A{}): {} vertices, {} triangles{}",
+               source, edge, chirality.n, chirality.m, edge_kind(std::round(angle * 1e9) / 1e9), angle, tube.radius,
+               cylinder.radius, options.chirality ? "" : ", the nearest a tube can have", mesh.n_vertices(),
+               mesh.n_faces(),
+               tube.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", tube.dropped)
+                                : std::string());
+  if (std::abs(tube.radius - cylinder.radius) > 0.05 * cylinder.radius)
+    spdlog::warn("{}: the ({}, {}) tube's radius {:.4f} A is {:.0f}% off the input's {:.4f} A: the atoms follow the "
+                 "tube",
+                 source, chirality.n, chirality.m, tube.radius,
+                 100 * (tube.radius - cylinder.radius) / cylinder.radius, cylinder.radius);
+  return {{"kind", "tube"},
+          {"edge", edge},
+          {"chirality", {chirality.n, chirality.m}},
+          {"chiral_angle_deg", angle},
+          {"radius", tube.radius},
+          {"input_radius", cylinder.radius},
+          {"axis", {cylinder.axis[0], cylinder.axis[1], cylinder.axis[2]}},
+          {"circularity", cylinder.distance},
+          {"dropped_triangles", tube.dropped}};
+}
+
+}  // namespace detail
+
+// Replaces the flat or cylindrical `mesh` by the lattice cut to its outline (pieces smaller than `min_area`
+// dropped). Throws InputError naming `source` if the surface is neither flat nor cylindrical, if an option does not
+// fit its kind, or if the cut keeps nothing.
+inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double edge, const LatticeOptions& options,
+                               const EdgeInterval& interval, double min_area) {
+  const auto start = std::chrono::steady_clock::now();
+  LatticeStep step;
+  step.result.before = topology(mesh);
+  const Flatness plane = flatness(mesh);
+  if (is_flat(plane, edge)) {
+    step.json = detail::cut_sheet(mesh, source, plane, edge, options);
+  } else {
+    if (!has_border(mesh))
+      throw InputError(fmt::format("{}: --lattice needs a flat or cylindrical surface, and this one is closed (a vertex "
+                                   "is {:.4g} A from the plane that fits it best)",
+                                   source, plane.distance));
+    const Cylinder cylinder = cylinder_fit(mesh);
+    if (!is_cylinder(mesh, cylinder, edge))
+      throw InputError(fmt::format("{}: --lattice needs a flat or cylindrical surface, and a vertex is {:.4g} A from "
+                                   "the plane and {:.4g} A from the cylinder that fit it best (more than {:.2g} A)",
+                                   source, plane.distance, cylinder.distance, kFlatShare * edge));
+    step.json = detail::cut_tube(mesh, step.surface, source, cylinder, edge, options);
+  }
   const SmallComponents pieces = remove_small_components(mesh, min_area);
   if (mesh.n_faces() == 0)
     throw InputError(fmt::format("{}: no lattice triangle of edge {:.4f} A fits inside the outline; build it larger "
@@ -54,25 +160,12 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
   RemeshResult& r = step.result;
   record_final_figures(r, mesh, interval);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  spdlog::info("{}: cut from a triangular lattice of edge {:.4f} A, turned {:g} degrees from its longest straight side "
-               "({}): {} vertices, {} triangles{}",
-               source, edge, turn_deg, std::fmod(std::abs(turn_deg), 60.0) == 0 ? "a zigzag edge there"
-                                       : std::fmod(std::abs(turn_deg), 60.0) == 30 ? "an armchair edge there"
-                                                                                  : "a chiral edge there",
-               mesh.n_vertices(), mesh.n_faces(),
-               sheet.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", sheet.dropped)
-                                 : std::string());
   if (!r.before.same_type(r.after))
     spdlog::warn("{}: the lattice cut has genus {}, {} components and {} borders where the input has {}, {} and {}: "
                  "a neck or hole narrower than about one lattice edge ({:.3f} A) was cut or filled",
                  source, r.after.genus, r.after.components, r.after.boundary_loops, r.before.genus,
                  r.before.components, r.before.boundary_loops, edge);
-  step.json = {{"edge", edge},
-               {"turn_deg", turn_deg},
-               {"angle_deg", sheet.angle_deg},
-               {"flatness", plane.distance},
-               {"dropped_triangles", sheet.dropped},
-               {"removed_pieces", to_json(pieces)}};
+  step.json["removed_pieces"] = to_json(pieces);
   return step;
 }
 
