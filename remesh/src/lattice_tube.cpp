@@ -67,6 +67,8 @@ struct CylinderResiduals {
   }
 };
 
+constexpr std::size_t kFitPoints = 4096;
+
 Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
 Vec3 vec3(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
 
@@ -85,10 +87,14 @@ Cylinder cylinder_fit(const TriMesh& mesh) {
     if (const double twice_area = n.norm(); twice_area > 0) normals += n * n.transpose() / twice_area;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(normals);
+  // The fit runs on at most kFitPoints vertices, every k-th in index order (points on a cylinder give its axis and
+  // radius from any few of them); the distance is then taken over all.
+  const std::size_t stride = (mesh.n_vertices() + kFitPoints - 1) / kFitPoints;
   CylinderResiduals residuals;
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(mesh.n_vertices());
-  for (auto v : mesh.vertices()) points.push_back(eigen(mesh.point(v)) - centre);
+  std::vector<Eigen::Vector3d> points, all;
+  all.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) all.push_back(eigen(mesh.point(v)) - centre);
+  for (std::size_t i = 0; i < all.size(); i += stride) points.push_back(all[i]);
   residuals.points = &points;
   residuals.axis0 = solver.eigenvectors().col(0);
   residuals.u0 = eigen(square_to(vec3(residuals.axis0)));
@@ -121,7 +127,8 @@ Cylinder cylinder_fit(const TriMesh& mesh) {
   out.point = vec3(centre + x[2] * residuals.u0 + x[3] * residuals.v0);
   out.point -= OpenMesh::dot(out.point - vec3(centre), out.axis) * out.axis;  // level with the centroid
   out.radius = std::abs(x[4]);
-  Eigen::VectorXd f(points.size());
+  residuals.points = &all;
+  Eigen::VectorXd f(all.size());
   residuals(x, f);
   out.distance = f.cwiseAbs().maxCoeff();
   if (!(out.radius > 0) || !std::isfinite(out.distance)) out.distance = std::numeric_limits<double>::infinity();

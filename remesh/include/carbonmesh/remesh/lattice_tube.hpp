@@ -10,8 +10,8 @@
 
 namespace carbonmesh {
 
-// The cylinder through the vertices (least squares over the axis, its position and the radius) and how far the
-// farthest vertex is from it.
+// The cylinder through the vertices (least squares over the axis, its position and the radius, on at most 4096 of
+// them, every k-th in index order) and how far the farthest vertex is from it.
 struct Cylinder {
   Vec3 point{0, 0, 0};  // on the axis, level with the vertices' centroid
   Vec3 axis{0, 0, 1};   // unit; its largest component positive
