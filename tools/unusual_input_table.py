@@ -129,6 +129,7 @@ def make_inputs(cli, folder):
         ("open tube (two borders)",
          write("tube", grid(40, 60, lambda s, t: (5 * math.cos(tau * s), 5 * math.sin(tau * s), 30 * t), True)),
          [20000, 200000]),
+        ("open tube (two borders), `--lattice`", os.path.join(folder, "tube.off"), [20000, 200000], ["--lattice"]),
         ("annulus (flat, two borders)",
          write("annulus", grid(60, 30, lambda s, t: (20 * (0.05 + 0.95 * t) * math.cos(tau * s),
                                                     20 * (0.05 + 0.95 * t) * math.sin(tau * s), 0.0), True)),
@@ -152,6 +153,10 @@ def row(name, atoms_asked, summary, seconds):
     rings = " ".join("%s:%d" % (k, n) for k, n in sorted(summary["rings_by_size"].items(), key=lambda x: int(x[0])))
     removed = summary.get("removed_components", {}).get("removed", 0)
     notes = []
+    lattice = summary.get("lattice", {})
+    if lattice.get("kind") == "tube":
+        notes.append("(%d, %d) tube, radius %.3f A (the input's %.3f A)" % (
+            lattice["chirality"][0], lattice["chirality"][1], lattice["radius"], lattice["input_radius"]))
     if summary["percent_three_bonds"] < 100:
         notes.append("%.1f%% three-bonded" % summary["percent_three_bonds"])
     if removed:
