@@ -234,6 +234,11 @@ TEST(BuildCommand, LatticeRollsAnOpenTubeIntoANanotube) {
   EXPECT_EQ(run("build " + (dir / "tube.off").string() + " -o " + (dir / "turned").string() +
                 " --lattice --lattice-turn 30"),
             2);
+  // (30, 0) has radius 11.74 A, 3.5 times the input's: the input would be unrolled far beyond its own shape.
+  EXPECT_EQ(run("build " + (dir / "tube.off").string() + " -o " + (dir / "wide").string() +
+                " --lattice --chirality 30,0"),
+            2);
+  EXPECT_FALSE(fs::exists(dir / "wide" / "summary.json"));
   save_mesh(test::triangle_sheet(10, 25.0), dir / "flake.off");
   EXPECT_EQ(run("build " + (dir / "flake.off").string() + " -o " + (dir / "rolled").string() +
                 " --lattice --chirality 5,5"),

@@ -39,6 +39,10 @@ inline bool is_cylinder(const TriMesh& mesh, const Cylinder& cylinder, double ed
          2 * std::acos(-1.0) * cylinder.radius <= kMaxTubeEdges * edge;
 }
 
+// --chirality N,M is refused where the tube's radius would be more than this many times the input's, or less than
+// its inverse: the input is unrolled to the tube's circumference, and that far off it is not the input's shape.
+constexpr double kMaxTubeRatio = 2.0;
+
 // What the user asked of the lattice: a flat sheet's turn, a tube's chiral indices (each default when not given).
 struct LatticeOptions {
   std::optional<double> turn_deg;
@@ -94,7 +98,15 @@ inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, c
     throw InputError(fmt::format("{}: --lattice-turn turns a flat sheet's lattice, and this surface is a cylinder "
                                  "(--chirality N,M sets a tube's)",
                                  source));
-  const Chirality chirality = options.chirality.value_or(nearest_chirality(cylinder.radius, edge));
+  const Chirality nearest = nearest_chirality(cylinder.radius, edge);
+  const Chirality chirality = options.chirality.value_or(nearest);
+  if (const double ratio = chiral_circumference(chirality, edge) / (2 * std::acos(-1.0) * cylinder.radius);
+      options.chirality && (ratio > kMaxTubeRatio || ratio < 1 / kMaxTubeRatio))
+    throw InputError(fmt::format("{}: the ({}, {}) tube's radius {:.4f} A is {:.3g} times the input's {:.4f} A (more "
+                                 "than {:g} times either way): the indices nearest the input's radius are ({}, {}), "
+                                 "or scale the input by {:.4g} to fit the tube (--scale, --size, --atoms)",
+                                 source, chirality.n, chirality.m, ratio * cylinder.radius, ratio, cylinder.radius,
+                                 kMaxTubeRatio, nearest.n, nearest.m, ratio));
   LatticeTube tube;
   try {
     tube = lattice_tube(mesh, cylinder, edge, chirality);
