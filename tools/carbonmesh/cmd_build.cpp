@@ -266,9 +266,13 @@ int run_build(BuildOptions& o) {
       !o.in.empty() && std::abs(atoms - scaled.expected_atoms) > 0.1 * scaled.expected_atoms) {
     if (o.lattice)
       spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the lattice sites inside the outline, "
-                   "less the border triangles taken off, cover {:.0f}% of the input's area (a small flake loses "
-                   "a larger share at its border)",
-                   source, atoms, scaled.expected_atoms, 100 * surface_area(mesh) / scaled.area);
+                   "less the border triangles taken off, cover {:.0f}% of the input's area ({})",
+                   source, atoms, scaled.expected_atoms, 100 * surface_area(mesh) / scaled.area,
+                   lattice.value("kind", "") == "tube"
+                       ? fmt::format("the tube's radius is {:.4f} A, the input's {:.4f} A; a short tube loses a "
+                                     "larger share at its rims",
+                                     lattice["radius"].get<double>(), lattice["input_radius"].get<double>())
+                       : std::string("a small flake loses a larger share at its border"));
     else
       spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the remeshed surface has {:.0f}% of the "
                    "input's area (detail finer than the edges, such as noise, is bridged) and a mean edge of {:.3f} A "
