@@ -66,6 +66,19 @@ std::vector<int> neighbour_counts(const std::vector<Vec3>& positions, double cut
   return n;
 }
 
+// Runs the deck of the build folder `out` with lmp, where lmp is installed, and expects all `atoms` in its last frame,
+// each with as many neighbours within 1.85 A as in structure.data.
+void expect_deck_keeps_neighbours(const fs::path& out, std::size_t atoms) {
+  if (std::system("command -v lmp > /dev/null 2>&1") != 0) return;
+  const std::string lmp = "cd '" + out.string() + "' && lmp -in in.rebo -log log.lammps -screen none";
+  ASSERT_EQ(std::system(lmp.c_str()), 0);
+  const DumpFrame f = read_last_dump_frame(out / "dump.rebo.lammpstrj");
+  ASSERT_EQ(f.positions.size(), atoms);
+  const std::vector<int> before = neighbour_counts(read_lammps_data(out / "structure.data").positions, 1.85);
+  const std::vector<int> after = neighbour_counts(f.positions, 1.85);
+  for (std::size_t i = 0; i < atoms; ++i) EXPECT_EQ(after[i], before[i]) << "atom " << i + 1;
+}
+
 }  // namespace
 
 TEST(BuildCommand, DefaultSphereGivesClosedFullerene) {
@@ -176,16 +189,7 @@ TEST(BuildCommand, LatticeCutsAFlatFlakeIntoGraphene) {
 
   // The deck runs: a box shrink-wrapped to a flat sheet alone would have no thickness (LAMMPS: "Cannot use neighbor
   // bins - box size << cutoff"); every atom keeps its two or three neighbours.
-  if (std::system("command -v lmp > /dev/null 2>&1") == 0) {
-    const std::string lmp = "cd '" + (dir / "out").string() + "' && lmp -in in.rebo -log log.lammps -screen none";
-    ASSERT_EQ(std::system(lmp.c_str()), 0);
-    const DumpFrame f = read_last_dump_frame(dir / "out" / "dump.rebo.lammpstrj");
-    const std::size_t atoms = s["atoms"];
-    ASSERT_EQ(f.positions.size(), atoms);
-    const std::vector<int> before = neighbour_counts(read_lammps_data(dir / "out" / "structure.data").positions, 1.85);
-    const std::vector<int> after = neighbour_counts(f.positions, 1.85);
-    for (std::size_t i = 0; i < atoms; ++i) EXPECT_EQ(after[i], before[i]) << "atom " << i + 1;
-  }
+  expect_deck_keeps_neighbours(dir / "out", s["atoms"].get<std::size_t>());
 
   // Not flat: an open hemisphere.
   save_mesh(open_hemisphere(), dir / "cap.off");
@@ -220,16 +224,7 @@ TEST(BuildCommand, LatticeRollsAnOpenTubeIntoANanotube) {
     EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, 0.01);
     EXPECT_EQ(s["optimization"]["strained_atoms_after"], 0);
     EXPECT_EQ(s["borders"], 2);
-    if (std::system("command -v lmp > /dev/null 2>&1") == 0) {
-      const std::string lmp = "cd '" + out.string() + "' && lmp -in in.rebo -log log.lammps -screen none";
-      ASSERT_EQ(std::system(lmp.c_str()), 0);
-      const DumpFrame f = read_last_dump_frame(out / "dump.rebo.lammpstrj");
-      const std::size_t atoms = s["atoms"];
-      ASSERT_EQ(f.positions.size(), atoms);
-      const std::vector<int> before = neighbour_counts(read_lammps_data(out / "structure.data").positions, 1.85);
-      const std::vector<int> after = neighbour_counts(f.positions, 1.85);
-      for (std::size_t i = 0; i < atoms; ++i) EXPECT_EQ(after[i], before[i]) << "atom " << i + 1;
-    }
+    expect_deck_keeps_neighbours(out, s["atoms"].get<std::size_t>());
   }
   EXPECT_EQ(run("build " + (dir / "tube.off").string() + " -o " + (dir / "turned").string() +
                 " --lattice --lattice-turn 30"),

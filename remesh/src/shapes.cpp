@@ -193,6 +193,17 @@ std::pair<std::vector<Vec3>, std::vector<std::array<int, 3>>> icosahedron() {
   return {points, faces};
 }
 
+// A straight tube along z, centred on the origin, with or without hemispherical caps.
+TriMesh straight_tube(double radius, double length, double edge, bool caps) {
+  const std::size_t segments = segments_for(radius, edge, 24);
+  const std::size_t rings =
+      std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(length / ring_spacing(radius, segments))) + 1);
+  std::vector<Vec3> centers;
+  for (std::size_t i = 0; i < rings; ++i)
+    centers.emplace_back(0.0, 0.0, -length / 2 + length * static_cast<double>(i) / static_cast<double>(rings - 1));
+  return sweep_tube(centers, false, radius, segments, caps);
+}
+
 }  // namespace
 
 TriMesh make_icosphere(const SphereShape& shape) {
@@ -412,25 +423,13 @@ TriMesh make_helix(const HelixShape& shape) {
 TriMesh make_capsule(const CapsuleShape& shape) {
   require_positive(shape.radius, "capsule radius");
   require_positive(shape.length, "capsule length");
-  const std::size_t segments = segments_for(shape.radius, shape.edge, 24);
-  const std::size_t rings = std::max<std::size_t>(
-      2, static_cast<std::size_t>(std::lround(shape.length / ring_spacing(shape.radius, segments))) + 1);
-  std::vector<Vec3> centers;
-  for (std::size_t i = 0; i < rings; ++i)
-    centers.emplace_back(0.0, 0.0, -shape.length / 2 + shape.length * static_cast<double>(i) / static_cast<double>(rings - 1));
-  return sweep_tube(centers, false, shape.radius, segments);
+  return straight_tube(shape.radius, shape.length, shape.edge, true);
 }
 
 TriMesh make_open_tube(const TubeShape& shape) {
   require_positive(shape.radius, "tube radius");
   require_positive(shape.length, "tube length");
-  const std::size_t segments = segments_for(shape.radius, shape.edge, 24);
-  const std::size_t rings = std::max<std::size_t>(
-      2, static_cast<std::size_t>(std::lround(shape.length / ring_spacing(shape.radius, segments))) + 1);
-  std::vector<Vec3> centers;
-  for (std::size_t i = 0; i < rings; ++i)
-    centers.emplace_back(0.0, 0.0, -shape.length / 2 + shape.length * static_cast<double>(i) / static_cast<double>(rings - 1));
-  return sweep_tube(centers, false, shape.radius, segments, false);
+  return straight_tube(shape.radius, shape.length, shape.edge, false);
 }
 
 const std::vector<std::string>& shape_names() {
