@@ -26,12 +26,6 @@ Vec3 area_normal(const TriMesh& mesh, TriMesh::FaceHandle f) {  // twice the are
   return OpenMesh::cross(b - a, c - a);
 }
 
-Vec3 face_centroid(const TriMesh& mesh, TriMesh::FaceHandle f) {
-  Vec3 c(0, 0, 0);
-  for (auto v : mesh.fv_range(f)) c += mesh.point(v);
-  return c / 3.0;
-}
-
 // A unit vector square to the unit vector w: the coordinate axis least along w, its part along w taken off.
 Vec3 square_to(const Vec3& w) {
   int k = 0;
@@ -196,7 +190,7 @@ LatticeTube lattice_tube(const TriMesh& input, const Cylinder& cylinder, double 
     for (auto vh : input.fv_range(f)) t[static_cast<std::size_t>(k++)] = unrolled(input.point(vh));
     for (std::size_t c = 1; c < 3; ++c) t[c].x -= period * std::round((t[c].x - t[0].x) / period);
     region.push_back(t);
-    const Vec3 centroid = face_centroid(input, f), d = centroid - cylinder.point;
+    const Vec3 d = input.calc_face_centroid(f) - cylinder.point;
     facing += OpenMesh::dot(area_normal(input, f), d - OpenMesh::dot(d, w) * w);
   }
 

@@ -227,7 +227,7 @@ int run_build(BuildOptions& o) {
       spdlog::info("{}: the surface is flat: --lattice cuts it from a triangular lattice instead of remeshing it (a "
                    "graphene sheet of hexagons only, no 5-7 pairs)",
                    source);
-    else if (!o.in.empty() && has_border(mesh) && is_cylinder(mesh, cylinder_fit(mesh), scaled.edge))
+    else if (!o.in.empty() && has_border(mesh) && is_cylinder(cylinder_fit(mesh), scaled.edge))
       spdlog::info("{}: the surface is a cylinder: --lattice rolls a triangular lattice onto it instead of remeshing "
                    "it (a nanotube of hexagons only, no 5-7 pairs; --chirality N,M sets its indices)",
                    source);

@@ -25,18 +25,18 @@ constexpr double kFlatShare = 1e-3;
 
 inline bool is_flat(const Flatness& plane, double edge) { return plane.distance <= kFlatShare * edge; }
 
-// A surface is cylindrical when it has a border (a closed surface cannot lie on a cylinder), no vertex is farther
-// from the cylinder that fits it best than kFlatShare of the lattice edge, and that cylinder's circumference is at
-// most kMaxTubeEdges lattice edges (beyond, the surface is as good as flat and the chiral indices run past 10^8).
+// A surface is cylindrical when it has a border (a closed surface cannot lie on a cylinder: checked before the fit),
+// no vertex is farther from the cylinder that fits it best than kFlatShare of the lattice edge, and that cylinder's
+// circumference is at most kMaxTubeEdges lattice edges (beyond, the surface is as good as flat and the chiral
+// indices run past 10^8).
 constexpr double kMaxTubeEdges = 1e8;
 
 inline bool has_border(const TriMesh& mesh) {
   return std::any_of(mesh.halfedges_begin(), mesh.halfedges_end(), [&](auto h) { return mesh.is_boundary(h); });
 }
 
-inline bool is_cylinder(const TriMesh& mesh, const Cylinder& cylinder, double edge) {
-  return has_border(mesh) && cylinder.distance <= kFlatShare * edge &&
-         2 * std::acos(-1.0) * cylinder.radius <= kMaxTubeEdges * edge;
+inline bool is_cylinder(const Cylinder& cylinder, double edge) {
+  return cylinder.distance <= kFlatShare * edge && 2 * std::acos(-1.0) * cylinder.radius <= kMaxTubeEdges * edge;
 }
 
 // --chirality N,M is refused where the tube's radius would be more than this many times the input's, or less than
@@ -158,7 +158,7 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
                                    "is {:.4g} A from the plane that fits it best)",
                                    source, plane.distance));
     const Cylinder cylinder = cylinder_fit(mesh);
-    if (!is_cylinder(mesh, cylinder, edge))
+    if (!is_cylinder(cylinder, edge))
       throw InputError(fmt::format("{}: --lattice needs a flat or cylindrical surface, and a vertex is {:.4g} A from "
                                    "the plane and {:.4g} A from the cylinder that fit it best (more than {:.2g} A)",
                                    source, plane.distance, cylinder.distance, kFlatShare * edge));
