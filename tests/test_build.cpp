@@ -243,6 +243,31 @@ TEST(BuildCommand, LatticeRollsAnOpenTubeIntoANanotube) {
   fs::remove_all(dir);
 }
 
+// Half a tube of radius 12 A does not go around its axis: --lattice cuts it as a flat sheet is, unrolled, and rolls
+// it back at its own radius (kind curved_sheet); --lattice-turn turns its lattice, --chirality is refused.
+TEST(BuildCommand, LatticeCutsHalfATubeAtItsOwnRadius) {
+  const fs::path dir = temp_dir("lattice_half");
+  save_mesh(test::half_cylinder(12.0, 40.0), dir / "half.off");
+  ASSERT_EQ(run("build " + (dir / "half.off").string() + " -o " + (dir / "out").string() +
+                " --lattice --lattice-turn 30 --no-report --steps 100"),
+            0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  EXPECT_EQ(s["lattice"]["kind"], "curved_sheet");
+  EXPECT_NEAR(s["lattice"]["radius"].get<double>(), 12.0, 1e-6);
+  EXPECT_EQ(s["lattice"]["turn_deg"], 30.0);
+  ASSERT_EQ(s["rings_by_size"].size(), 1u);
+  EXPECT_GT(s["rings_by_size"]["6"].get<int>(), 200);
+  for (const auto& [bonds, count] : s["dual"]["atoms_by_bond_count"].items()) EXPECT_GE(std::stoi(bonds), 2);
+  EXPECT_NEAR(s["optimization"]["bonds_after"]["min"].get<double>(), 1.42, 0.01);
+  EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, 0.01);
+  EXPECT_EQ(s["borders"], 1);
+  EXPECT_EQ(run("build " + (dir / "half.off").string() + " -o " + (dir / "rolled").string() +
+                " --lattice --chirality 5,5"),
+            2);
+  EXPECT_FALSE(fs::exists(dir / "rolled" / "summary.json"));
+  fs::remove_all(dir);
+}
+
 // A scan's debris: a sphere with a speck (a sphere of radius 0.2) and a stray triangle beside it. Both are removed
 // before the remesh: no atoms on top of each other, and the sphere converges as it does alone.
 TEST(BuildCommand, ComponentsSmallerThanAC20CageAreRemoved) {

@@ -2,6 +2,7 @@
 // indices and lattice_tube.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 
@@ -154,23 +155,7 @@ TEST(LatticeTube, AnOpenTubeIsRolledFromTheLatticeWithoutDefects) {
 // Half a cylinder, its grid jittered along the surface: one border, no interior defect, the lattice on the cylinder
 // of the nearest chirality.
 TEST(LatticeTube, HalfACylinderIsCutFromTheTube) {
-  std::vector<Vec3> points;
-  std::vector<std::array<int, 3>> triangles;
-  const int nt = 20, nz = 16;
-  for (int i = 0; i <= nt; ++i)
-    for (int j = 0; j <= nz; ++j) {
-      const bool rim = i == 0 || i == nt || j == 0 || j == nz;
-      const double theta = kPi * i / nt + (rim ? 0 : 0.03 * std::sin(7.0 * i * j));
-      const double z = 40.0 * j / nz + (rim ? 0 : 0.5 * std::cos(5.0 * i + j));
-      points.emplace_back(12 * std::cos(theta), 12 * std::sin(theta), z);
-    }
-  for (int i = 0; i < nt; ++i)
-    for (int j = 0; j < nz; ++j) {
-      const int p = i * (nz + 1) + j, q = p + nz + 1;
-      triangles.push_back({p, q, q + 1});
-      triangles.push_back({p, q + 1, p + 1});
-    }
-  const TriMesh half = test::tilted(test::mesh_from(points, triangles));
+  const TriMesh half = test::tilted(test::half_cylinder(12.0, 40.0));
   const Cylinder c = cylinder_fit(half);
   EXPECT_NEAR(c.radius, 12.0, 1e-9);
   const double a = 2.46;
@@ -196,4 +181,74 @@ TEST(LatticeTube, IndicesThatMakeNoTubeAreRefused) {
   EXPECT_THROW(lattice_tube(open, c, 1.0, {-3, 5}), InputError);
   EXPECT_THROW(lattice_tube(open, c, 0.0, {5, 5}), InputError);
   EXPECT_NO_THROW(lattice_tube(open, c, 1.0, {2, 1}));
+}
+
+// A tube goes around its axis; half a tube and a strip winding one and a half times around a cylinder (a ribbon
+// coiled like a spring, its turns apart) do not: their angles unwrap along the edges.
+TEST(AnglesAlongSurface, OnlyATubeGoesAroundItsAxis) {
+  const TriMesh tube = test::tilted(make_open_tube({4.0, 20.0, 0.0}));
+  EXPECT_FALSE(angles_along_surface(tube, cylinder_fit(tube)).has_value());
+  const TriMesh half = test::tilted(test::half_cylinder(12.0, 40.0));
+  const auto half_angles = angles_along_surface(half, cylinder_fit(half));
+  ASSERT_TRUE(half_angles.has_value());
+  EXPECT_NEAR(*std::max_element(half_angles->begin(), half_angles->end()) -
+                  *std::min_element(half_angles->begin(), half_angles->end()),
+              kPi, 1e-9);
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  const int n = 90;  // 60 degrees of the coil per 10 steps
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k < 2; ++k) {
+      const double theta = 3 * kPi * i / n;
+      points.emplace_back(6 * std::cos(theta), 6 * std::sin(theta), 4 * theta / kPi + 2.0 * k);  // pitch 8, width 2
+    }
+  for (int i = 0; i < n; ++i) {
+    triangles.push_back({2 * i, 2 * i + 2, 2 * i + 3});
+    triangles.push_back({2 * i, 2 * i + 3, 2 * i + 1});
+  }
+  const TriMesh coil = test::mesh_from(points, triangles);
+  const Cylinder c = cylinder_fit(coil);
+  EXPECT_NEAR(c.radius, 6.0, 1e-9);
+  const auto coil_angles = angles_along_surface(coil, c);
+  ASSERT_TRUE(coil_angles.has_value());
+  EXPECT_NEAR(*std::max_element(coil_angles->begin(), coil_angles->end()) -
+                  *std::min_element(coil_angles->begin(), coil_angles->end()),
+              3 * kPi, 1e-9);
+}
+
+// Half a cylinder, unrolled, cut as a flat sheet is and rolled back: on the input's own cylinder (no chirality
+// changes its radius), no interior defect, one lattice line along a straight side along the axis (40 long, longer
+// than the curved sides' 12 pi), the faces facing the input's way.
+TEST(CurvedSheet, HalfACylinderKeepsItsRadiusAndALatticeLineAlongItsSide) {
+  const double a = 2.46;
+  for (const bool inward : {false, true}) {
+    const TriMesh half = inward ? reversed(test::half_cylinder(12.0, 40.0)) : test::half_cylinder(12.0, 40.0);
+    const Cylinder c = cylinder_fit(half);
+    const auto angles = angles_along_surface(half, c);
+    ASSERT_TRUE(angles.has_value());
+    const CurvedSheet sheet = curved_sheet(half, c, *angles, a);
+    const TriMesh& m = sheet.mesh;
+    const Topology t = topology(m);
+    EXPECT_EQ(t.components, 1u);
+    EXPECT_EQ(t.boundary_loops, 1u);
+    std::size_t on_side = 0;
+    for (auto v : m.vertices()) {
+      EXPECT_NEAR(from_axis(c, m.point(v)), 12.0, 1e-9);
+      if (!m.is_boundary(v)) {
+        EXPECT_EQ(m.valence(v), 6u);
+      }
+        const Vec3 p = m.point(v);
+      if (std::abs(p[1]) < 1e-9) ++on_side;  // on the side at angle 0 or at pi
+    }
+    EXPECT_GE(on_side, 16u);  // a lattice line of edge 2.46 along a side 40 long: 17 points
+    const double shortest = 2 * 12.0 * std::sin(a / (2 * 12.0));
+    for (auto e : m.edges()) {
+      EXPECT_LE(m.calc_edge_length(e), a + 1e-9);
+      EXPECT_GE(m.calc_edge_length(e), shortest - 1e-9);
+    }
+    EXPECT_EQ(facing(m, c), inward ? -1 : 1);
+    EXPECT_EQ(facing(sheet.surface, c), inward ? -1 : 1);
+    const double expected = surface_area(half) / (std::sqrt(3.0) / 4 * a * a);
+    EXPECT_NEAR(static_cast<double>(m.n_faces()), expected, 0.1 * expected);
+  }
 }

@@ -62,6 +62,30 @@ inline TriMesh radial_noise(TriMesh mesh, double sigma, unsigned seed) {
   return mesh;
 }
 
+// Half a cylinder about the z axis (angles 0 to pi, heights 0 to `length`), a 20 x 16 grid whose inner points are
+// moved along the surface (so its triangles differ and are not parallel to the axis): one border, four straight sides
+// once unrolled, the two along the axis `length` long.
+inline TriMesh half_cylinder(double radius, double length) {
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  const int nt = 20, nz = 16;
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i <= nt; ++i)
+    for (int j = 0; j <= nz; ++j) {
+      const bool rim = i == 0 || i == nt || j == 0 || j == nz;
+      const double theta = pi * i / nt + (rim ? 0 : 0.03 * std::sin(7.0 * i * j));
+      const double z = length * j / nz + (rim ? 0 : 0.0125 * length * std::cos(5.0 * i + j));
+      points.emplace_back(radius * std::cos(theta), radius * std::sin(theta), z);
+    }
+  for (int i = 0; i < nt; ++i)
+    for (int j = 0; j < nz; ++j) {
+      const int p = i * (nz + 1) + j, q = p + nz + 1;
+      triangles.push_back({p, q, q + 1});
+      triangles.push_back({p, q + 1, p + 1});
+    }
+  return mesh_from(points, triangles);
+}
+
 // `mesh` turned about the axis (1, 2, 3) by 0.7 rad and shifted by (5, -3, 2): in no coordinate plane or axis.
 inline TriMesh tilted(TriMesh mesh) {
   Vec3 k(1, 2, 3);

@@ -7,10 +7,12 @@
 #include <unsupported/Eigen/NumericalDiff>
 
 #include <algorithm>
+#include <deque>
 #include <cmath>
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/lattice_sheet.hpp"
 #include "lattice_cut.hpp"
 
 namespace carbonmesh {
@@ -163,6 +165,33 @@ Chirality nearest_chirality(double radius, double edge) {
   return best;
 }
 
+TriMesh cylinder_surface(const Cylinder& cylinder, double radius, double z0, double z1, double edge, bool inward) {
+  const double pi = std::acos(-1.0);
+  const Vec3 w = cylinder.axis, u = square_to(w), v = OpenMesh::cross(w, u);
+  const double step = 2 * std::acos(std::max(-1.0, 1 - 1e-4 * edge / radius));  // chords within 1e-4 edge
+  const int segments = static_cast<int>(std::clamp(std::ceil(2 * pi / step), 16.0, 1e6));
+  TriMesh surface;
+  std::vector<TriMesh::VertexHandle> low, high;
+  for (int k = 0; k < segments; ++k) {
+    const double theta = 2 * pi * k / segments;
+    const Vec3 around = cylinder.point + radius * (std::cos(theta) * u + std::sin(theta) * v);
+    low.push_back(surface.add_vertex(around + z0 * w));
+    high.push_back(surface.add_vertex(around + z1 * w));
+  }
+  for (int k = 0; k < segments; ++k) {
+    const auto b0 = low[static_cast<std::size_t>(k)], b1 = low[static_cast<std::size_t>((k + 1) % segments)],
+               t0 = high[static_cast<std::size_t>(k)], t1 = high[static_cast<std::size_t>((k + 1) % segments)];
+    if (inward) {
+      surface.add_face(b0, t1, b1);
+      surface.add_face(b0, t0, t1);
+    } else {
+      surface.add_face(b0, b1, t1);
+      surface.add_face(b0, t1, t0);
+    }
+  }
+  return surface;
+}
+
 LatticeTube lattice_tube(const TriMesh& input, const Cylinder& cylinder, double edge, Chirality chirality) {
   if (!(edge > 0) || !std::isfinite(edge)) throw InputError(fmt::format("lattice edge {} must be positive", edge));
   const long n = chirality.n, m = chirality.m;
@@ -221,26 +250,78 @@ LatticeTube lattice_tube(const TriMesh& input, const Cylinder& cylinder, double 
       },
       facing < 0);
 
-  // The surface: the tube's cylinder one edge beyond the input's ends, its chords within 1e-4 edge of the circle.
-  const double step = 2 * std::acos(std::max(-1.0, 1 - 1e-4 * edge / out.radius));
-  const int segments = static_cast<int>(std::clamp(std::ceil(2 * pi / step), 16.0, 1e6));
-  std::vector<TriMesh::VertexHandle> low, high;
-  for (int k = 0; k < segments; ++k) {
-    const double s = period * k / segments;
-    low.push_back(out.surface.add_vertex(rolled_up(s, z0 - edge)));
-    high.push_back(out.surface.add_vertex(rolled_up(s, z1 + edge)));
+  // The surface: the tube's cylinder one edge beyond the input's ends.
+  out.surface = cylinder_surface(cylinder, out.radius, z0 - edge, z1 + edge, edge, facing < 0);
+  return out;
+}
+
+std::optional<std::vector<double>> angles_along_surface(const TriMesh& mesh, const Cylinder& cylinder) {
+  const double pi = std::acos(-1.0);
+  const Vec3 w = cylinder.axis, u = square_to(w), v = OpenMesh::cross(w, u);
+  std::vector<double> seen(mesh.n_vertices()), angle(mesh.n_vertices(), 0.0);
+  for (auto vh : mesh.vertices()) {
+    const Vec3 d = mesh.point(vh) - cylinder.point;
+    seen[static_cast<std::size_t>(vh.idx())] = std::atan2(OpenMesh::dot(d, v), OpenMesh::dot(d, u));
   }
-  for (int k = 0; k < segments; ++k) {
-    const auto b0 = low[static_cast<std::size_t>(k)], b1 = low[static_cast<std::size_t>((k + 1) % segments)],
-               t0 = high[static_cast<std::size_t>(k)], t1 = high[static_cast<std::size_t>((k + 1) % segments)];
-    if (facing < 0) {
-      out.surface.add_face(b0, t1, b1);
-      out.surface.add_face(b0, t0, t1);
-    } else {
-      out.surface.add_face(b0, b1, t1);
-      out.surface.add_face(b0, t1, t0);
+  auto step = [&](TriMesh::HalfedgeHandle h) {  // the turn from h's start to its end, in (-pi, pi]
+    const double turn = seen[static_cast<std::size_t>(mesh.to_vertex_handle(h).idx())] -
+                        seen[static_cast<std::size_t>(mesh.from_vertex_handle(h).idx())];
+    return turn - 2 * pi * std::ceil((turn - pi) / (2 * pi));
+  };
+  // Breadth first from the first vertex of each component, each vertex one step from the one it was reached from.
+  std::vector<char> reached(mesh.n_vertices(), 0);
+  for (auto start : mesh.vertices()) {
+    if (reached[static_cast<std::size_t>(start.idx())]) continue;
+    reached[static_cast<std::size_t>(start.idx())] = 1;
+    angle[static_cast<std::size_t>(start.idx())] = seen[static_cast<std::size_t>(start.idx())];
+    std::deque<TriMesh::VertexHandle> queue{start};
+    while (!queue.empty()) {
+      const auto from = queue.front();
+      queue.pop_front();
+      for (auto h : mesh.voh_range(from)) {
+        const auto to = mesh.to_vertex_handle(h);
+        if (reached[static_cast<std::size_t>(to.idx())]) continue;
+        reached[static_cast<std::size_t>(to.idx())] = 1;
+        angle[static_cast<std::size_t>(to.idx())] = angle[static_cast<std::size_t>(from.idx())] + step(h);
+        queue.push_back(to);
+      }
     }
   }
+  // An edge whose ends differ by a full turn closes a loop around the axis.
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const double turn = angle[static_cast<std::size_t>(mesh.to_vertex_handle(h).idx())] -
+                        angle[static_cast<std::size_t>(mesh.from_vertex_handle(h).idx())];
+    if (std::abs(turn - step(h)) > pi) return std::nullopt;
+  }
+  return angle;
+}
+
+CurvedSheet curved_sheet(const TriMesh& input, const Cylinder& cylinder, const std::vector<double>& angles,
+                         double edge, double turn_deg) {
+  const Vec3 w = cylinder.axis, u = square_to(w), v = OpenMesh::cross(w, u);
+  const double radius = cylinder.radius;
+  // Unrolled: (radius * angle, height, 0), the faces as they are (facing +z where they face out of the cylinder).
+  TriMesh unrolled = input;
+  double z0 = std::numeric_limits<double>::infinity(), z1 = -z0;
+  for (auto vh : unrolled.vertices()) {
+    const double z = OpenMesh::dot(input.point(vh) - cylinder.point, w);
+    unrolled.set_point(vh, Vec3(radius * angles[static_cast<std::size_t>(vh.idx())], z, 0));
+    z0 = std::min(z0, z), z1 = std::max(z1, z);
+  }
+  Flatness plane = flatness(unrolled);
+  plane.distance = 0;  // the plane z = 0, up to rounding
+  LatticeSheet sheet = lattice_sheet(unrolled, plane, edge, turn_deg);
+  CurvedSheet out;
+  out.angle_deg = sheet.angle_deg;
+  out.dropped = sheet.dropped;
+  out.mesh = std::move(sheet.mesh);
+  for (auto vh : out.mesh.vertices()) {  // rolled back: s = radius * angle
+    const Vec3 p = out.mesh.point(vh);
+    const double theta = p[0] / radius;
+    out.mesh.set_point(vh, cylinder.point + radius * (std::cos(theta) * u + std::sin(theta) * v) + p[1] * w);
+  }
+  out.surface = cylinder_surface(cylinder, radius, z0 - edge, z1 + edge, edge, plane.normal[2] < 0);
   return out;
 }
 

@@ -228,8 +228,9 @@ int run_build(BuildOptions& o) {
                    "graphene sheet of hexagons only, no 5-7 pairs)",
                    source);
     else if (!o.in.empty() && has_border(mesh) && is_cylinder(cylinder_fit(mesh), scaled.edge))
-      spdlog::info("{}: the surface is a cylinder: --lattice rolls a triangular lattice onto it instead of remeshing "
-                   "it (a nanotube of hexagons only, no 5-7 pairs; --chirality N,M sets its indices)",
+      spdlog::info("{}: the surface lies on a cylinder: --lattice rolls a triangular lattice onto it instead of "
+                   "remeshing it (hexagons only, no 5-7 pairs; an open tube becomes a nanotube, --chirality N,M "
+                   "sets its indices)",
                    source);
     try {
       remeshed = remesh(mesh, o.remesh);
@@ -455,11 +456,12 @@ void add_build_command(CLI::App& app, Action& action) {
                 "a tube, instead of remeshing it (graphene or a nanotube: hexagons only; a flat sheet has one lattice "
                 "line along the longest straight side of its outline: a zigzag edge there)");
   cmd->add_option("--lattice-turn", opt->lattice_turn,
-                  "with --lattice on a flat input: turn the lattice by this many degrees from the longest straight "
-                  "side (0: a zigzag edge there, 30: an armchair edge; default 0)")
+                  "with --lattice on a flat input or a part of a cylinder that does not go around its axis: turn the "
+                  "lattice by this many degrees from the longest straight side (0: a zigzag edge there, 30: an "
+                  "armchair edge; default 0)")
       ->needs("--lattice");
   cmd->add_option("--chirality", opt->chirality,
-                  "with --lattice on a cylindrical input: the tube's chiral indices N,M (N,0 zigzag, N,N armchair; "
+                  "with --lattice on an open tube: its chiral indices N,M (N,0 zigzag, N,N armchair; "
                   "radius sqrt(3) b sqrt(N^2 + NM + M^2) / (2 pi); default: the indices nearest the input's radius)")
       ->delimiter(',')
       ->expected(2)

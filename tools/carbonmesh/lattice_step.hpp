@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/error.hpp"
@@ -62,6 +63,8 @@ inline std::string edge_kind(double angle_deg) {
   return turn == 0 ? "zigzag" : turn == 30 ? "armchair" : "chiral";
 }
 
+inline std::string with_article(const std::string& word) { return (word.front() == 'a' ? "an " : "a ") + word; }
+
 // A flat `mesh` replaced by the lattice cut to its outline; summary.json's "lattice".
 inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const Flatness& plane, double edge,
                                 const LatticeOptions& options) {
@@ -78,8 +81,8 @@ inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const 
   }
   mesh = std::move(sheet.mesh);
   spdlog::info("{}: cut from a triangular lattice of edge {:.4f} A, turned {:g} degrees from its longest straight side "
-               "(a {} edge there): {} vertices, {} triangles{}",
-               source, edge, turn_deg, edge_kind(turn_deg), mesh.n_vertices(), mesh.n_faces(),
+               "({} edge there): {} vertices, {} triangles{}",
+               source, edge, turn_deg, with_article(edge_kind(turn_deg)), mesh.n_vertices(), mesh.n_faces(),
                sheet.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", sheet.dropped)
                                  : std::string());
   return {{"kind", "sheet"},
@@ -95,8 +98,8 @@ inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const 
 inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
                                const Cylinder& cylinder, double edge, const LatticeOptions& options) {
   if (options.turn_deg)
-    throw InputError(fmt::format("{}: --lattice-turn turns a flat sheet's lattice, and this surface is a cylinder "
-                                 "(--chirality N,M sets a tube's)",
+    throw InputError(fmt::format("{}: --lattice-turn turns a sheet's lattice, and this surface is a tube (it goes "
+                                 "around its axis: --chirality N,M sets its lattice)",
                                  source));
   const Chirality nearest = nearest_chirality(cylinder.radius, edge);
   const Chirality chirality = options.chirality.value_or(nearest);
@@ -139,6 +142,40 @@ inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, c
           {"dropped_triangles", tube.dropped}};
 }
 
+// A part of a cylinder that does not go around its axis replaced by the flat lattice cut to its unrolled outline and
+// rolled back, `surface` by its cylinder; summary.json's "lattice".
+inline nlohmann::json cut_curved_sheet(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
+                                       const Cylinder& cylinder, const std::vector<double>& angles, double edge,
+                                       const LatticeOptions& options) {
+  if (options.chirality)
+    throw InputError(fmt::format("{}: --chirality rolls the lattice into a tube, and this surface is a part of a "
+                                 "cylinder that does not go around its axis (--lattice-turn turns its lattice)",
+                                 source));
+  const double turn_deg = options.turn_deg.value_or(0.0);
+  CurvedSheet sheet;
+  try {
+    sheet = curved_sheet(mesh, cylinder, angles, edge, turn_deg);
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+  mesh = std::move(sheet.mesh);
+  surface = std::move(sheet.surface);
+  spdlog::info("{}: a part of a cylinder of radius {:.4f} A, unrolled, cut from a triangular lattice of edge {:.4f} A "
+               "turned {:g} degrees from its longest straight side ({} edge there) and rolled back: {} vertices, {} "
+               "triangles{}",
+               source, cylinder.radius, edge, turn_deg, with_article(edge_kind(turn_deg)), mesh.n_vertices(), mesh.n_faces(),
+               sheet.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", sheet.dropped)
+                                 : std::string());
+  return {{"kind", "curved_sheet"},
+          {"edge", edge},
+          {"turn_deg", turn_deg},
+          {"angle_deg", sheet.angle_deg},
+          {"radius", cylinder.radius},
+          {"axis", {cylinder.axis[0], cylinder.axis[1], cylinder.axis[2]}},
+          {"circularity", cylinder.distance},
+          {"dropped_triangles", sheet.dropped}};
+}
+
 }  // namespace detail
 
 // Replaces the flat or cylindrical `mesh` by the lattice cut to its outline (pieces smaller than `min_area`
@@ -162,7 +199,10 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
       throw InputError(fmt::format("{}: --lattice needs a flat or cylindrical surface, and a vertex is {:.4g} A from "
                                    "the plane and {:.4g} A from the cylinder that fit it best (more than {:.2g} A)",
                                    source, plane.distance, cylinder.distance, kFlatShare * edge));
-    step.json = detail::cut_tube(mesh, step.surface, source, cylinder, edge, options);
+    if (const auto angles = angles_along_surface(mesh, cylinder))
+      step.json = detail::cut_curved_sheet(mesh, step.surface, source, cylinder, *angles, edge, options);
+    else
+      step.json = detail::cut_tube(mesh, step.surface, source, cylinder, edge, options);
   }
   const SmallComponents pieces = remove_small_components(mesh, min_area);
   if (mesh.n_faces() == 0)

@@ -1,10 +1,12 @@
 #pragma once
-// A cylindrical surface cut from a triangular lattice rolled into a tube (`carbonmesh build --lattice` on an open
-// cylinder or a part of one). The dual of the rolled lattice is a carbon nanotube of chiral indices (n, m): hexagons
-// only. The remesher cannot give that: an open tube of 20000 atoms remeshed has 374 pentagons and 374 heptagons,
-// and a cylinder, being developable, needs none.
+// A cylindrical surface cut from a triangular lattice (`carbonmesh build --lattice`): an open tube from the lattice
+// rolled into a tube, whose dual is a carbon nanotube of chiral indices (n, m), and a part of a cylinder that does not
+// go around its axis from the flat lattice rolled onto it. Hexagons only: the remesher cannot give that (an open tube
+// of 20000 atoms remeshed has 374 pentagons and 374 heptagons), and a cylinder, being developable, needs none.
 #include <cstddef>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "carbonmesh/remesh/mesh.hpp"
 
@@ -54,5 +56,29 @@ struct LatticeTube {
 // (n, 0) tube. Faces face the side the input's faces face (out of or into the tube). Throws InputError if `edge` is
 // not positive or n^2 + nm + m^2 < kMinChiralNorm or n or m is negative.
 LatticeTube lattice_tube(const TriMesh& input, const Cylinder& cylinder, double edge, Chirality chirality);
+
+// The cylinder of `radius` on the axis of `cylinder`, from height z0 to z1 along the axis (from cylinder.point), its
+// chords within 1e-4 `edge` of the circle, its faces facing out of the cylinder (into it if `inward`).
+TriMesh cylinder_surface(const Cylinder& cylinder, double radius, double z0, double z1, double edge, bool inward);
+
+// Each vertex's angle about the axis of `cylinder` (radians, by vertex index), unwrapped along the edges from the
+// first vertex of each component; std::nullopt if the surface goes around the axis (a loop of its edges winds once
+// around it: a tube, whose lattice must close on itself).
+std::optional<std::vector<double>> angles_along_surface(const TriMesh& mesh, const Cylinder& cylinder);
+
+struct CurvedSheet {
+  TriMesh mesh;            // the lattice triangles inside the input's outline, on the input's cylinder
+  TriMesh surface;         // that cylinder over the input's length, finely tessellated (the atoms' surface)
+  double angle_deg = 0;    // the lattice direction in the unrolled plane (lattice_sheet's)
+  std::size_t dropped = 0;  // triangles inside that were left out where they touched the rest at one vertex only
+};
+
+// A part of a cylinder that does not go around its axis (half a tube, a curved sheet; `angles` from
+// angles_along_surface): unrolled at the cylinder's own radius, each vertex to (radius * angle, height), cut from a
+// flat lattice of edge `edge` as a flat sheet is (lattice_sheet: one lattice line along the longest straight side of
+// the unrolled outline, turned by `turn_deg`), and rolled back onto the cylinder. No chirality constrains it: the
+// radius stays the input's. Faces face the side the input's faces face.
+CurvedSheet curved_sheet(const TriMesh& input, const Cylinder& cylinder, const std::vector<double>& angles,
+                         double edge, double turn_deg = 0);
 
 }  // namespace carbonmesh
