@@ -53,6 +53,24 @@ TriMesh reversed(const TriMesh& mesh) {
   return test::mesh_from(points, triangles);
 }
 
+// The checks every lattice laid on a cylinder passes: every vertex on the cylinder of `radius` about c's axis, every
+// interior vertex of valence 6, every edge a lattice edge of length a bent around the axis (between the chord
+// 2 R sin(a / 2R) of an edge square to the axis and a), the faces facing out (in if `inward`).
+void expect_lattice_on_cylinder(const TriMesh& m, const Cylinder& c, double radius, double a, bool inward) {
+  for (auto v : m.vertices()) {
+    EXPECT_NEAR(from_axis(c, m.point(v)), radius, 1e-9);
+    if (!m.is_boundary(v)) {
+      EXPECT_EQ(m.valence(v), 6u);
+    }
+  }
+  const double shortest = 2 * radius * std::sin(a / (2 * radius));
+  for (auto e : m.edges()) {
+    EXPECT_LE(m.calc_edge_length(e), a + 1e-9);
+    EXPECT_GE(m.calc_edge_length(e), shortest - 1e-9);
+  }
+  EXPECT_EQ(facing(m, c), inward ? -1 : 1);
+}
+
 }  // namespace
 
 // The built-in open tube's rings are offset by half a step, so its triangles are not parallel to the axis: the
@@ -126,19 +144,7 @@ TEST(LatticeTube, AnOpenTubeIsRolledFromTheLatticeWithoutDefects) {
       EXPECT_EQ(t.components, 1u);
       EXPECT_EQ(t.boundary_loops, 2u);
       EXPECT_EQ(t.genus, 0);
-      for (auto v : m.vertices()) {
-        EXPECT_NEAR(from_axis(c, m.point(v)), radius, 1e-9);
-        if (!m.is_boundary(v)) {
-          EXPECT_EQ(m.valence(v), 6u);
-        }
-      }
-      // A lattice edge of length a, bent around the axis by an arc s of the circumference: a chord of 2 R sin(s / 2R).
-      const double shortest = 2 * radius * std::sin(a / (2 * radius));
-      for (auto e : m.edges()) {
-        EXPECT_LE(m.calc_edge_length(e), a + 1e-9);
-        EXPECT_GE(m.calc_edge_length(e), shortest - 1e-9);
-      }
-      EXPECT_EQ(facing(m, c), inward ? -1 : 1);
+      expect_lattice_on_cylinder(m, c, radius, a, inward);
       EXPECT_EQ(facing(tube.surface, c), inward ? -1 : 1);
       // About the input's area in lattice triangles (less a row or so at each rim).
       const double expected = surface_area(input) / (std::sqrt(3.0) / 4 * a * a);
@@ -165,10 +171,7 @@ TEST(LatticeTube, HalfACylinderIsCutFromTheTube) {
   const Topology t = topology(tube.mesh);
   EXPECT_EQ(t.components, 1u);
   EXPECT_EQ(t.boundary_loops, 1u);
-  for (auto v : tube.mesh.vertices())
-    if (!tube.mesh.is_boundary(v)) {
-      EXPECT_EQ(tube.mesh.valence(v), 6u);
-    }
+  expect_lattice_on_cylinder(tube.mesh, c, tube.radius, a, false);
   const double expected = surface_area(half) / (std::sqrt(3.0) / 4 * a * a);
   EXPECT_NEAR(static_cast<double>(tube.mesh.n_faces()), expected, 0.15 * expected);
 }
@@ -231,22 +234,10 @@ TEST(CurvedSheet, HalfACylinderKeepsItsRadiusAndALatticeLineAlongItsSide) {
     const Topology t = topology(m);
     EXPECT_EQ(t.components, 1u);
     EXPECT_EQ(t.boundary_loops, 1u);
-    std::size_t on_side = 0;
-    for (auto v : m.vertices()) {
-      EXPECT_NEAR(from_axis(c, m.point(v)), 12.0, 1e-9);
-      if (!m.is_boundary(v)) {
-        EXPECT_EQ(m.valence(v), 6u);
-      }
-        const Vec3 p = m.point(v);
-      if (std::abs(p[1]) < 1e-9) ++on_side;  // on the side at angle 0 or at pi
-    }
+    expect_lattice_on_cylinder(m, c, 12.0, a, inward);
+    std::size_t on_side = 0;  // on the side at angle 0 or at pi
+    for (auto v : m.vertices()) on_side += std::abs(m.point(v)[1]) < 1e-9 ? 1 : 0;
     EXPECT_GE(on_side, 16u);  // a lattice line of edge 2.46 along a side 40 long: 17 points
-    const double shortest = 2 * 12.0 * std::sin(a / (2 * 12.0));
-    for (auto e : m.edges()) {
-      EXPECT_LE(m.calc_edge_length(e), a + 1e-9);
-      EXPECT_GE(m.calc_edge_length(e), shortest - 1e-9);
-    }
-    EXPECT_EQ(facing(m, c), inward ? -1 : 1);
     EXPECT_EQ(facing(sheet.surface, c), inward ? -1 : 1);
     const double expected = surface_area(half) / (std::sqrt(3.0) / 4 * a * a);
     EXPECT_NEAR(static_cast<double>(m.n_faces()), expected, 0.1 * expected);

@@ -63,6 +63,16 @@ inline std::string edge_kind(double angle_deg) {
   return turn == 0 ? "zigzag" : turn == 30 ? "armchair" : "chiral";
 }
 
+// f(), its InputError prefixed with the input's name.
+template <typename F>
+auto naming_input(const std::string& source, F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+}
+
 inline std::string with_article(const std::string& word) { return (word.front() == 'a' ? "an " : "a ") + word; }
 
 // A flat `mesh` replaced by the lattice cut to its outline; summary.json's "lattice".
@@ -73,12 +83,7 @@ inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const 
                                  "(--lattice-turn turns a flat sheet's lattice)",
                                  source));
   const double turn_deg = options.turn_deg.value_or(0.0);
-  LatticeSheet sheet;
-  try {
-    sheet = lattice_sheet(mesh, plane, edge, turn_deg);
-  } catch (const InputError& e) {
-    throw InputError(source + ": " + e.what());
-  }
+  LatticeSheet sheet = naming_input(source, [&] { return lattice_sheet(mesh, plane, edge, turn_deg); });
   mesh = std::move(sheet.mesh);
   spdlog::info("{}: cut from a triangular lattice of edge {:.4f} A, turned {:g} degrees from its longest straight side "
                "({} edge there): {} vertices, {} triangles{}",
@@ -110,12 +115,7 @@ inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, c
                                  "or scale the input by {:.4g} to fit the tube (--scale, --size, --atoms)",
                                  source, chirality.n, chirality.m, ratio * cylinder.radius, ratio, cylinder.radius,
                                  kMaxTubeRatio, nearest.n, nearest.m, ratio));
-  LatticeTube tube;
-  try {
-    tube = lattice_tube(mesh, cylinder, edge, chirality);
-  } catch (const InputError& e) {
-    throw InputError(source + ": " + e.what());
-  }
+  LatticeTube tube = naming_input(source, [&] { return lattice_tube(mesh, cylinder, edge, chirality); });
   mesh = std::move(tube.mesh);
   surface = std::move(tube.surface);
   const double angle = chiral_angle_deg(chirality);
@@ -152,12 +152,7 @@ inline nlohmann::json cut_curved_sheet(TriMesh& mesh, std::optional<TriMesh>& su
                                  "cylinder that does not go around its axis (--lattice-turn turns its lattice)",
                                  source));
   const double turn_deg = options.turn_deg.value_or(0.0);
-  CurvedSheet sheet;
-  try {
-    sheet = curved_sheet(mesh, cylinder, angles, edge, turn_deg);
-  } catch (const InputError& e) {
-    throw InputError(source + ": " + e.what());
-  }
+  CurvedSheet sheet = naming_input(source, [&] { return curved_sheet(mesh, cylinder, angles, edge, turn_deg); });
   mesh = std::move(sheet.mesh);
   surface = std::move(sheet.surface);
   spdlog::info("{}: a part of a cylinder of radius {:.4f} A, unrolled, cut from a triangular lattice of edge {:.4f} A "
