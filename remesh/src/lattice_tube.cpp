@@ -131,6 +131,14 @@ Cylinder cylinder_fit(const TriMesh& mesh) {
   return out;
 }
 
+void check_chirality(Chirality c) {
+  const long n = c.n, m = c.m;
+  if (n < 0 || m < 0 || n * n + n * m + m * m < kMinChiralNorm)
+    throw InputError(fmt::format("chirality ({}, {}) makes no tube: n and m must be >= 0 with n^2 + nm + m^2 >= {} "
+                                 "(the thinnest is (2, 1))",
+                                 n, m, kMinChiralNorm));
+}
+
 double chiral_circumference(Chirality c, double edge) {
   const double n = c.n, m = c.m;
   return edge * std::sqrt(n * n + n * m + m * m);
@@ -194,11 +202,8 @@ TriMesh cylinder_surface(const Cylinder& cylinder, double radius, double z0, dou
 
 LatticeTube lattice_tube(const TriMesh& input, const Cylinder& cylinder, double edge, Chirality chirality) {
   if (!(edge > 0) || !std::isfinite(edge)) throw InputError(fmt::format("lattice edge {} must be positive", edge));
+  check_chirality(chirality);
   const long n = chirality.n, m = chirality.m;
-  if (n < 0 || m < 0 || n * n + n * m + m * m < kMinChiralNorm)
-    throw InputError(fmt::format("chirality ({}, {}) makes no tube: n and m must be >= 0 with n^2 + nm + m^2 >= {} "
-                                 "(the thinnest is (2, 1))",
-                                 n, m, kMinChiralNorm));
   const double pi = std::acos(-1.0);
   const double period = chiral_circumference(chirality, edge);  // P, the circumference
   LatticeTube out;

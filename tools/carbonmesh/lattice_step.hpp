@@ -108,6 +108,7 @@ inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, c
                                  source));
   const Chirality nearest = nearest_chirality(cylinder.radius, edge);
   const Chirality chirality = options.chirality.value_or(nearest);
+  naming_input(source, [&] { check_chirality(chirality); });
   if (const double ratio = chiral_circumference(chirality, edge) / (2 * std::acos(-1.0) * cylinder.radius);
       options.chirality && (ratio > kMaxTubeRatio || ratio < 1 / kMaxTubeRatio))
     throw InputError(fmt::format("{}: the ({}, {}) tube's radius {:.4f} A is {:.3g} times the input's {:.4f} A (more "

@@ -34,6 +34,9 @@ struct Chirality {
 // triangle would meet itself around the tube.
 constexpr long kMinChiralNorm = 7;
 
+// Throws InputError unless n, m >= 0 and n^2 + nm + m^2 >= kMinChiralNorm.
+void check_chirality(Chirality c);
+
 double chiral_circumference(Chirality c, double edge);
 double chiral_angle_deg(Chirality c);  // from the zigzag direction: 0 for (n, 0), 30 for (n, n)
 
