@@ -142,6 +142,7 @@ TEST(BuildCommand, OpenCapIsPassivatedWithTopology) {
   EXPECT_EQ(s["files"]["lammps_data_full"], (dir / "out" / "structure-full.data").string());
   EXPECT_EQ(s["input_self_intersections"]["pairs"], 0);
   EXPECT_EQ(s["remeshed_mesh"]["self_intersections"]["pairs"], 0);
+  EXPECT_TRUE(s["remeshed_mesh"]["self_intersections"]["searched"].get<bool>());
   fs::remove_all(dir);
 }
 // A triangular flake: its 60-degree corners are sharper than the remeshed triangles can follow, and a triangle with two
@@ -186,6 +187,9 @@ TEST(BuildCommand, LatticeCutsAFlatFlakeIntoGraphene) {
   EXPECT_EQ(s["remesh"]["long"], 0);
   EXPECT_EQ(s["remesh"]["short"], 0);
   EXPECT_EQ(s["borders"], 1);
+  // One plane lattice's cells cannot overlap: the search for self-intersections is left out.
+  EXPECT_FALSE(s["remeshed_mesh"]["self_intersections"]["searched"].get<bool>());
+  EXPECT_EQ(s["remeshed_mesh"]["self_intersections"]["pairs"], 0);
 
   // The deck runs: a box shrink-wrapped to a flat sheet alone would have no thickness (LAMMPS: "Cannot use neighbor
   // bins - box size << cutoff"); every atom keeps its two or three neighbours.
@@ -224,6 +228,8 @@ TEST(BuildCommand, LatticeRollsAnOpenTubeIntoANanotube) {
     EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, 0.01);
     EXPECT_EQ(s["optimization"]["strained_atoms_after"], 0);
     EXPECT_EQ(s["borders"], 2);
+    EXPECT_TRUE(s["remeshed_mesh"]["self_intersections"]["searched"].get<bool>());
+    EXPECT_EQ(s["remeshed_mesh"]["self_intersections"]["pairs"], 0);
     expect_deck_keeps_neighbours(out, s["atoms"].get<std::size_t>());
   }
   EXPECT_EQ(run("build " + (dir / "tube.off").string() + " -o " + (dir / "turned").string() +

@@ -203,14 +203,17 @@ AngleStats angle_stats(const TriMesh& mesh) {
   return a;
 }
 
-MeshStats mesh_stats(const TriMesh& mesh, const EdgeInterval& interval) {
+MeshStats mesh_stats(const TriMesh& mesh, const EdgeInterval& interval, bool search_self_intersections) {
   MeshStats s;
   s.topology = topology(mesh);
   s.interval = interval;
   s.edges = edge_stats(mesh, interval);
   s.valence = valence_stats(mesh);
   s.angles = angle_stats(mesh);
-  s.self_intersections = self_intersections(mesh);
+  if (search_self_intersections)
+    s.self_intersections = self_intersections(mesh);
+  else
+    s.self_intersections.searched = false;
   return s;
 }
 

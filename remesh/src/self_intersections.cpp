@@ -57,10 +57,12 @@ nlohmann::json to_json(const SelfIntersections& s) {
   j["pairs"] = s.pairs;
   j["faces"] = s.faces;
   j["example"] = s.pairs > 0 ? nlohmann::json(s.example) : nlohmann::json(nullptr);
+  j["searched"] = s.searched;
   return j;
 }
 
 std::string to_text(const SelfIntersections& s) {
+  if (!s.searched) return "self-intersections none by construction (not searched)";
   if (s.pairs == 0) return "self-intersections none";
   return fmt::format("self-intersections {} face pair{} ({} faces; e.g. faces {} and {})", s.pairs,
                      s.pairs == 1 ? "" : "s", s.faces, s.example[0], s.example[1]);

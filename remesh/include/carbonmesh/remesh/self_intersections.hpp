@@ -16,6 +16,7 @@ struct SelfIntersections {
   std::size_t pairs = 0;  // pairs of faces that intersect (faces sharing a corner or an edge only if they overlap)
   std::size_t faces = 0;  // faces in at least one such pair
   std::array<int, 2> example{-1, -1};  // (lower, higher) face index of the pair first in that order; -1: none
+  bool searched = true;  // false: not searched, the mesh cannot pass through itself by construction (then no pairs)
 };
 
 // CGAL::Polygon_mesh_processing::self_intersections on exact predicates (deleted faces left out; face indices are the
