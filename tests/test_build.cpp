@@ -79,6 +79,16 @@ void expect_deck_keeps_neighbours(const fs::path& out, std::size_t atoms) {
   for (std::size_t i = 0; i < atoms; ++i) EXPECT_EQ(after[i], before[i]) << "atom " << i + 1;
 }
 
+// A built net of hexagons only (at least `hexagons`), no atom with fewer than two bonds, every bond 1.42 A within
+// `tolerance` after the optimisation.
+void expect_hexagons_only(const nlohmann::json& s, int hexagons, double tolerance) {
+  ASSERT_EQ(s["rings_by_size"].size(), 1u);
+  EXPECT_GT(s["rings_by_size"]["6"].get<int>(), hexagons);
+  for (const auto& [bonds, count] : s["dual"]["atoms_by_bond_count"].items()) EXPECT_GE(std::stoi(bonds), 2);
+  EXPECT_NEAR(s["optimization"]["bonds_after"]["min"].get<double>(), 1.42, tolerance);
+  EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, tolerance);
+}
+
 }  // namespace
 
 TEST(BuildCommand, DefaultSphereGivesClosedFullerene) {
@@ -178,11 +188,7 @@ TEST(BuildCommand, LatticeCutsAFlatFlakeIntoGraphene) {
   const nlohmann::json s = read_json(dir / "out" / "summary.json");
   ASSERT_TRUE(s.contains("lattice"));
   EXPECT_LT(s["lattice"]["flatness"].get<double>(), 1e-9);
-  ASSERT_EQ(s["rings_by_size"].size(), 1u);
-  EXPECT_GT(s["rings_by_size"]["6"].get<int>(), 200);
-  for (const auto& [bonds, count] : s["dual"]["atoms_by_bond_count"].items()) EXPECT_GE(std::stoi(bonds), 2);
-  EXPECT_NEAR(s["optimization"]["bonds_after"]["min"].get<double>(), 1.42, 1e-3);
-  EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, 1e-3);
+  expect_hexagons_only(s, 200, 1e-3);
   EXPECT_EQ(s["optimization"]["strained_atoms_after"], 0);
   EXPECT_EQ(s["remesh"]["long"], 0);
   EXPECT_EQ(s["remesh"]["short"], 0);
@@ -211,8 +217,8 @@ TEST(BuildCommand, LatticeRollsAnOpenTubeIntoANanotube) {
   const double pi = std::acos(-1.0), a = std::sqrt(3.0) * 1.42;
   for (const auto& [indices, n, m] : {std::tuple<std::string, int, int>{"", 5, 5}, {"9,0", 9, 0}}) {
     const fs::path out = dir / ("out" + indices);
-    ASSERT_EQ(run("build " + (dir / "tube.off").string() + " -o " + out.string() + " --lattice --no-report --steps 100" +
-                  (indices.empty() ? "" : " --chirality " + indices)),
+    ASSERT_EQ(run("build " + (dir / "tube.off").string() + " -o " + out.string() +
+                  " --lattice --no-report --steps 100" + (indices.empty() ? "" : " --chirality " + indices)),
               0);
     const nlohmann::json s = read_json(out / "summary.json");
     ASSERT_TRUE(s.contains("lattice"));
@@ -221,11 +227,7 @@ TEST(BuildCommand, LatticeRollsAnOpenTubeIntoANanotube) {
     EXPECT_EQ(s["lattice"]["chirality"][1], m);
     EXPECT_NEAR(s["lattice"]["radius"].get<double>(), a * std::sqrt(n * n + n * m + m * m) / (2 * pi), 1e-9);
     EXPECT_NEAR(s["lattice"]["input_radius"].get<double>(), 3.39, 1e-6);
-    ASSERT_EQ(s["rings_by_size"].size(), 1u);
-    EXPECT_GT(s["rings_by_size"]["6"].get<int>(), 80);
-    for (const auto& [bonds, count] : s["dual"]["atoms_by_bond_count"].items()) EXPECT_GE(std::stoi(bonds), 2);
-    EXPECT_NEAR(s["optimization"]["bonds_after"]["min"].get<double>(), 1.42, 0.01);
-    EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, 0.01);
+    expect_hexagons_only(s, 80, 0.01);
     EXPECT_EQ(s["optimization"]["strained_atoms_after"], 0);
     EXPECT_EQ(s["borders"], 2);
     EXPECT_TRUE(s["remeshed_mesh"]["self_intersections"]["searched"].get<bool>());
@@ -261,11 +263,7 @@ TEST(BuildCommand, LatticeCutsHalfATubeAtItsOwnRadius) {
   EXPECT_EQ(s["lattice"]["kind"], "curved_sheet");
   EXPECT_NEAR(s["lattice"]["radius"].get<double>(), 12.0, 1e-6);
   EXPECT_EQ(s["lattice"]["turn_deg"], 30.0);
-  ASSERT_EQ(s["rings_by_size"].size(), 1u);
-  EXPECT_GT(s["rings_by_size"]["6"].get<int>(), 200);
-  for (const auto& [bonds, count] : s["dual"]["atoms_by_bond_count"].items()) EXPECT_GE(std::stoi(bonds), 2);
-  EXPECT_NEAR(s["optimization"]["bonds_after"]["min"].get<double>(), 1.42, 0.01);
-  EXPECT_NEAR(s["optimization"]["bonds_after"]["max"].get<double>(), 1.42, 0.01);
+  expect_hexagons_only(s, 200, 0.01);
   EXPECT_EQ(s["borders"], 1);
   EXPECT_EQ(run("build " + (dir / "half.off").string() + " -o " + (dir / "rolled").string() +
                 " --lattice --chirality 5,5"),

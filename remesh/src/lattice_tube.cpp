@@ -215,13 +215,16 @@ LatticeTube lattice_tube(const TriMesh& input, const Cylinder& cylinder, double 
     return Point2{std::atan2(OpenMesh::dot(d, v), OpenMesh::dot(d, u)) * period / (2 * pi), OpenMesh::dot(d, w)};
   };
 
+  std::vector<Point2> at(input.n_vertices());  // each vertex unrolled
+  for (auto vh : input.vertices()) at[static_cast<std::size_t>(vh.idx())] = unrolled(input.point(vh));
+
   // The input unrolled, each triangle in one piece (its corners within half a circumference of its first).
   std::vector<Triangle2> region;
   double facing = 0;  // > 0: the faces face out of the tube
   for (auto f : input.faces()) {
     Triangle2 t;
     int k = 0;
-    for (auto vh : input.fv_range(f)) t[static_cast<std::size_t>(k++)] = unrolled(input.point(vh));
+    for (auto vh : input.fv_range(f)) t[static_cast<std::size_t>(k++)] = at[static_cast<std::size_t>(vh.idx())];
     for (std::size_t c = 1; c < 3; ++c) t[c].x -= period * std::round((t[c].x - t[0].x) / period);
     region.push_back(t);
     const Vec3 d = input.calc_face_centroid(f) - cylinder.point;
@@ -231,8 +234,7 @@ LatticeTube lattice_tube(const TriMesh& input, const Cylinder& cylinder, double 
   // A lattice point at the vertex lowest along the axis; the chiral vector n e1 + m e2 along s.
   Point2 origin;
   double z0 = std::numeric_limits<double>::infinity(), z1 = -z0;
-  for (auto vh : input.vertices()) {
-    const Point2 p = unrolled(input.point(vh));
+  for (const Point2& p : at) {
     if (p.y < z0) z0 = p.y, origin = p;
     z1 = std::max(z1, p.y);
   }
@@ -314,8 +316,7 @@ CurvedSheet curved_sheet(const TriMesh& input, const Cylinder& cylinder, const s
     unrolled.set_point(vh, Vec3(radius * angles[static_cast<std::size_t>(vh.idx())], z, 0));
     z0 = std::min(z0, z), z1 = std::max(z1, z);
   }
-  Flatness plane = flatness(unrolled);
-  plane.distance = 0;  // the plane z = 0, up to rounding
+  const Flatness plane = flatness(unrolled);  // z = 0, up to rounding
   LatticeSheet sheet = lattice_sheet(unrolled, plane, edge, turn_deg);
   CurvedSheet out;
   out.angle_deg = sheet.angle_deg;

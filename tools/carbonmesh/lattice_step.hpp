@@ -75,6 +75,11 @@ auto naming_input(const std::string& source, F&& f) {
 
 inline std::string with_article(const std::string& word) { return (word.front() == 'a' ? "an " : "a ") + word; }
 
+// The end of a cut's log line: the triangles left out where they touched the rest at one corner only, if any.
+inline std::string dropped_note(std::size_t dropped) {
+  return dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", dropped) : std::string();
+}
+
 // A flat `mesh` replaced by the lattice cut to its outline; summary.json's "lattice".
 inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const Flatness& plane, double edge,
                                 const LatticeOptions& options) {
@@ -88,8 +93,7 @@ inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const 
   spdlog::info("{}: cut from a triangular lattice of edge {:.4f} A, turned {:g} degrees from its longest straight side "
                "({} edge there): {} vertices, {} triangles{}",
                source, edge, turn_deg, with_article(edge_kind(turn_deg)), mesh.n_vertices(), mesh.n_faces(),
-               sheet.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", sheet.dropped)
-                                 : std::string());
+               dropped_note(sheet.dropped));
   return {{"kind", "sheet"},
           {"edge", edge},
           {"turn_deg", turn_deg},
@@ -125,8 +129,7 @@ inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, c
                source, edge, chirality.n, chirality.m, edge_kind(std::round(angle * 1e9) / 1e9), angle, tube.radius,
                cylinder.radius, options.chirality ? "" : ", the nearest a tube can have", mesh.n_vertices(),
                mesh.n_faces(),
-               tube.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", tube.dropped)
-                                : std::string());
+               dropped_note(tube.dropped));
   if (std::abs(tube.radius - cylinder.radius) > 0.05 * cylinder.radius)
     spdlog::warn("{}: the ({}, {}) tube's radius {:.4f} A is {:.0f}% off the input's {:.4f} A: the atoms follow the "
                  "tube",
@@ -159,9 +162,8 @@ inline nlohmann::json cut_curved_sheet(TriMesh& mesh, std::optional<TriMesh>& su
   spdlog::info("{}: a part of a cylinder of radius {:.4f} A, unrolled, cut from a triangular lattice of edge {:.4f} A "
                "turned {:g} degrees from its longest straight side ({} edge there) and rolled back: {} vertices, {} "
                "triangles{}",
-               source, cylinder.radius, edge, turn_deg, with_article(edge_kind(turn_deg)), mesh.n_vertices(), mesh.n_faces(),
-               sheet.dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", sheet.dropped)
-                                 : std::string());
+               source, cylinder.radius, edge, turn_deg, with_article(edge_kind(turn_deg)), mesh.n_vertices(),
+               mesh.n_faces(), dropped_note(sheet.dropped));
   return {{"kind", "curved_sheet"},
           {"edge", edge},
           {"turn_deg", turn_deg},
@@ -186,9 +188,9 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
   if (is_flat(plane, edge)) {
     step.json = detail::cut_sheet(mesh, source, plane, edge, options);
   } else {
-    if (!has_border(mesh))
-      throw InputError(fmt::format("{}: --lattice needs a flat or cylindrical surface, and this one is closed (a vertex "
-                                   "is {:.4g} A from the plane that fits it best)",
+    if (step.result.before.boundary_loops == 0)
+      throw InputError(fmt::format("{}: --lattice needs a flat or cylindrical surface, and this one is closed (a "
+                                   "vertex is {:.4g} A from the plane that fits it best)",
                                    source, plane.distance));
     const Cylinder cylinder = cylinder_fit(mesh);
     if (!is_cylinder(cylinder, edge))
