@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
+#include "icosahedral.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -180,19 +181,6 @@ double ring_spacing(double radius, std::size_t segments) {
   return 2 * M_PI * radius / static_cast<double>(segments) * std::sqrt(3.0) / 2.0;
 }
 
-// The unit icosahedron, faces counter-clockwise seen from outside.
-std::pair<std::vector<Vec3>, std::vector<std::array<int, 3>>> icosahedron() {
-  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> points = {{-1, g, 0}, {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
-                              {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
-  std::vector<std::array<int, 3>> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                           {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                           {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                           {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  for (auto& p : points) p.normalize();
-  return {points, faces};
-}
-
 // A straight tube along z, centred on the origin, with or without hemispherical caps.
 TriMesh straight_tube(double radius, double length, double edge, bool caps) {
   const std::size_t segments = segments_for(radius, edge, 24);
@@ -213,7 +201,7 @@ TriMesh make_icosphere(const SphereShape& shape) {
   // (Not a structured binding: the lambda below captures `points`, which clang before 16 refuses for a binding.)
   std::vector<Vec3> points;
   std::vector<std::array<int, 3>> faces;
-  std::tie(points, faces) = icosahedron();
+  std::tie(points, faces) = icosahedral::icosahedron();
   for (int s = 0; s < shape.subdivisions; ++s) {
     std::map<std::pair<int, int>, int> midpoint;
     auto mid = [&](int a, int b) {
@@ -246,43 +234,25 @@ TriMesh make_icosphere(const SphereShape& shape) {
   return mesh;
 }
 
-constexpr int kSpringIterations = 50;
-
-// Point along the great-circle arc from unit vector a to unit vector b, at the fraction t of its angle.
-Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
-  const double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
-  if (angle < 1e-12) return a;
-  return (a * std::sin((1 - t) * angle) + b * std::sin(t * angle)) / std::sin(angle);
-}
+namespace {
 
 // Lattice point (i, j) of the spherical triangle (a, b, c) at frequency f (weight k = f - i - j on a), on the unit
-// sphere. The edges are divided into equal arcs; an interior point is where the three great circles through the
-// edge points of equal weight (i on b, j on c, k on a) cross: the normalised mean of their three pairwise
-// crossings. Longest / shortest edge 1.25 at frequency 129 with the sqrt(3) step; the central projection of the
-// flat lattice shortens the edges near the 12 corners (1.52 at frequency 129 with sqrt(3) even after the springs).
+// sphere (icosahedral::spherical_point). Longest / shortest edge 1.25 at frequency 129 with the sqrt(3) step; the
+// central projection of the flat lattice shortens the edges near the 12 corners (1.52 at frequency 129 with sqrt(3)
+// even after the springs).
 Vec3 geodesic_point(const Vec3& a, const Vec3& b, const Vec3& c, int i, int j, int f) {
   const int k = f - i - j;
   const double fd = f;
-  if (j == 0) return slerp(a, b, i / fd);
-  if (i == 0) return slerp(a, c, j / fd);
-  if (k == 0) return slerp(b, c, j / fd);
-  // Normals of the great circles of constant weight on b, on c and on a.
-  const Vec3 ni = slerp(a, b, i / fd).cross(slerp(c, b, i / fd));
-  const Vec3 nj = slerp(a, c, j / fd).cross(slerp(b, c, j / fd));
-  const Vec3 nk = slerp(b, a, k / fd).cross(slerp(c, a, k / fd));
-  const Vec3 centre = a + b + c;
-  auto crossing = [&](const Vec3& n1, const Vec3& n2) {
-    const Vec3 x = n1.cross(n2).normalized();
-    return x.dot(centre) < 0 ? -x : x;
-  };
-  return (crossing(ni, nj) + crossing(nj, nk) + crossing(nk, ni)).normalized();
+  return icosahedral::spherical_point(a, b, c, k / fd, i / fd, j / fd);
 }
+
+}  // namespace
 
 TriMesh make_geodesic_sphere(const GeodesicSphereShape& shape) {
   require_positive(shape.radius, "sphere radius");
   if (shape.frequency < 1 || shape.frequency > 1000)
     throw InputError("shape: geodesic sphere frequency must be between 1 and 1000");
-  const auto [corners, triangles] = icosahedron();
+  const auto [corners, triangles] = icosahedral::icosahedron();
   const int f = shape.frequency;
   // Lattice point (i, j) of face (A, B, C) has the weights i on B and j on C (geodesic_point). Points on an
   // icosahedron edge are shared by the two faces: keyed by the edge's corners (ascending) and the step from the
@@ -342,29 +312,7 @@ TriMesh make_geodesic_sphere(const GeodesicSphereShape& shape) {
     }
     for (const auto e : old_edges) mesh.flip(e);
   }
-  // Spring relaxation on the sphere towards the mean edge evens out the density within the faces: the dual
-  // optimisation then has less to flow (C998460: 225 L-BFGS iterations instead of 671), though the spread of the
-  // edges near the 12 corners grows (longest / shortest 1.34 instead of 1.25 at frequency 129 with sqrt(3)).
-  double mean = 0;
-  for (auto e : mesh.edges()) mean += mesh.calc_edge_length(e);
-  mean /= static_cast<double>(mesh.n_edges());
-  // Each step reads the old positions only (in parallel, the same for any thread count).
-  std::vector<Vec3> next(mesh.n_vertices());
-  const int n = static_cast<int>(mesh.n_vertices());
-  for (int it = 0; it < kSpringIterations; ++it) {
-#pragma omp parallel for schedule(static) if (n >= 20000)
-    for (int i = 0; i < n; ++i) {
-      const VH v(i);
-      Vec3 force(0, 0, 0);
-      for (auto w : mesh.vv_range(v)) {
-        const Vec3 d = mesh.point(w) - mesh.point(v);
-        const double l = d.norm();
-        force += (l - mean) / l * d;
-      }
-      next[static_cast<std::size_t>(i)] = (mesh.point(v) + 0.3 * force).normalized() * shape.radius;
-    }
-    for (auto v : mesh.vertices()) mesh.set_point(v, next[static_cast<std::size_t>(v.idx())]);
-  }
+  icosahedral::even_out_on_sphere(mesh, shape.radius);
   mesh.update_normals();
   return mesh;
 }
