@@ -72,6 +72,22 @@ TEST(CliShape, GeodesicWritesTheDualOfC240) {
   std::filesystem::remove(path);
 }
 
+// `shape geodesic --indices 2,1`: the Goldberg-Coxeter sphere whose dual is the chiral C140 (T = 7); the indices
+// replace --frequency and --sqrt3.
+TEST(CliShape, GeodesicIndicesWriteTheDualOfC140) {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("carbonmesh-test-goldberg-" + std::to_string(::getpid()) + ".off");
+  EXPECT_EQ(run_cli("shape geodesic --indices 2,1 -o " + path.string()).exit_code, 0);
+  const RunResult stats = run_cli("stats " + path.string());
+  EXPECT_EQ(stats.exit_code, 0);
+  EXPECT_NE(stats.output.find("V 72  E 210  F 140"), std::string::npos) << stats.output;
+  EXPECT_NE(stats.output.find("valence interior 5:12 6:60"), std::string::npos) << stats.output;
+  std::filesystem::remove(path);
+  EXPECT_NE(run_cli("shape geodesic --indices 2,1 --sqrt3 -o " + path.string()).exit_code, 0);
+  EXPECT_EQ(run_cli("shape geodesic --indices 0,0 -o " + path.string()).exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
 TEST(CliHelp, ListsTheTopicsWithoutOne) {
   const RunResult r = run_cli("help");
   EXPECT_EQ(r.exit_code, 0) << r.output;

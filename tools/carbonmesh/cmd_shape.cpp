@@ -16,6 +16,7 @@ void add_shape_command(CLI::App& app, Action& action) {
     HelixShape helix;
     CapsuleShape capsule;
     TubeShape tube;
+    std::vector<int> indices;  // geodesic: Goldberg-Coxeter (h, k)
     double edge = 0;
   };
   auto opt = std::make_shared<Options>();
@@ -31,7 +32,15 @@ void add_shape_command(CLI::App& app, Action& action) {
   cmd->add_option("--frequency", opt->geodesic.frequency,
                   "geodesic: divisions of each icosahedron edge (1-1000; 20 f^2 faces, the dual of C_20f^2)")
       ->capture_default_str();
-  cmd->add_flag("--sqrt3", opt->geodesic.sqrt3, "geodesic: one sqrt(3) step after (60 f^2 faces: f 1, 2, 3, 4 give the duals of C60, C240, C540, C960)");
+  auto* sqrt3 = cmd->add_flag("--sqrt3", opt->geodesic.sqrt3, "geodesic: one sqrt(3) step after (60 f^2 faces: f 1, 2, 3, 4 give the duals of C60, C240, C540, C960)");
+  cmd->add_option("--indices", opt->indices,
+                  "geodesic: Goldberg-Coxeter indices H,K instead of --frequency (20 T faces, T = H^2 + HK + K^2, the "
+                  "dual of the icosahedral fullerene C_20T; H,0 is frequency H, H,H frequency H with --sqrt3, "
+                  "0 < K < H a chiral cage; default: none, --frequency is used)")
+      ->expected(2)
+      ->delimiter(',')
+      ->excludes(sqrt3)
+      ->excludes(cmd->get_option("--frequency"));
   cmd->add_option("--major", opt->torus.major_radius, "torus: radius of the centre circle (mesh units)")->capture_default_str();
   cmd->add_option("--minor", opt->torus.minor_radius, "torus: tube radius (mesh units)")->capture_default_str();
   cmd->add_option("--pitch", opt->helix.pitch, "helix: rise per turn (mesh units)")->capture_default_str();
@@ -48,7 +57,9 @@ void add_shape_command(CLI::App& app, Action& action) {
         mesh = make_icosphere(opt->sphere);
       } else if (opt->name == "geodesic") {
         opt->geodesic.radius = opt->sphere.radius;
-        mesh = make_geodesic_sphere(opt->geodesic);
+        mesh = opt->indices.empty()
+                   ? make_geodesic_sphere(opt->geodesic)
+                   : make_goldberg_coxeter_sphere({opt->sphere.radius, opt->indices[0], opt->indices[1]});
       } else if (opt->name == "torus") {
         opt->torus.edge = opt->edge;
         mesh = make_torus(opt->torus);

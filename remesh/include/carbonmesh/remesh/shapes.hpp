@@ -29,6 +29,23 @@ TriMesh make_geodesic_sphere(const GeodesicSphereShape& shape);
 // The geodesic sphere of `radius` whose face count 20 T is nearest to `faces` (ties to the smaller).
 GeodesicSphereShape geodesic_sphere_for_faces(double faces, double radius);
 
+// Goldberg-Coxeter sphere (h, k): the triangular lattice folded onto the icosahedron, each face the lattice triangle
+// with corners 0, h e1 + k e2 and that vector turned by 60 degrees (e1, e2 lattice edges 60 degrees apart): T = h^2 +
+// hk + k^2, 20 T faces, 10 T + 2 vertices, every vertex of valence 6 but the icosahedron's 12 (valence 5). Its
+// points go onto the sphere as the geodesic sphere's do, and the same springs even them out. Its dual is the
+// icosahedral fullerene C_20T: (h, 0) and (h, h) have the full symmetry Ih ((h, 0) is the geodesic sphere of
+// frequency h), 0 < k < h gives a chiral cage (symmetry I; (k, h) is its mirror image). (1, 1) gives C60.
+struct GoldbergCoxeterShape {
+  double radius = 10.0;
+  int h = 1, k = 0;
+};
+// The largest T built: 10^8 faces (`carbonmesh build`'s largest structure).
+constexpr long kMaxTriangulationNumber = 5'000'000;
+long triangulation_number(int h, int k);  // h^2 + hk + k^2
+// Throws InputError unless h, k >= 0, not both 0, and T <= kMaxTriangulationNumber.
+void check_goldberg_coxeter(int h, int k);
+TriMesh make_goldberg_coxeter_sphere(const GoldbergCoxeterShape& shape);
+
 // A tube of radius `minor_radius` around a circle of radius `major_radius` (genus 1).
 // `edge` is the target edge length (0: chosen so the tube has 24 segments around).
 struct TorusShape {
