@@ -272,6 +272,53 @@ TEST(BuildCommand, LatticeCutsHalfATubeAtItsOwnRadius) {
   fs::remove_all(dir);
 }
 
+// A sphere (an icosphere turned and shifted, scaled to about 2000 atoms): --lattice folds the lattice onto an
+// icosahedron, the fullerene nearest its radius, C2000 of indices (10, 0): 12 pentagons and hexagons only, every atom
+// three-bonded, the deck running with every atom keeping its neighbours. --chirality 7,3 gives the chiral C1580
+// instead. A stretched sphere, a sheet's --lattice-turn and indices twice the radius away are refused.
+TEST(BuildCommand, LatticeFoldsASphereIntoAFullerene) {
+  const fs::path dir = temp_dir("lattice_sphere");
+  save_mesh(test::tilted(make_icosphere({7.0, 3})), dir / "sphere.off");
+  for (const auto& [indices, h, k] : {std::tuple<std::string, int, int>{"", 10, 0}, {"7,3", 7, 3}}) {
+    const fs::path out = dir / ("out" + indices);
+    ASSERT_EQ(run("build " + (dir / "sphere.off").string() + " -o " + out.string() +
+                  " --lattice --atoms 2000 --no-report --steps 100" + (indices.empty() ? "" : " --chirality " + indices)),
+              0);
+    const nlohmann::json s = read_json(out / "summary.json");
+    ASSERT_TRUE(s.contains("lattice"));
+    EXPECT_EQ(s["lattice"]["kind"], "fullerene");
+    EXPECT_EQ(s["lattice"]["indices"][0], h);
+    EXPECT_EQ(s["lattice"]["indices"][1], k);
+    EXPECT_EQ(s["lattice"]["symmetry"], k == 0 ? "Ih" : "I");
+    const long t = h * h + h * k + k * k;
+    EXPECT_EQ(s["atoms"], 20 * t);
+    EXPECT_EQ(s["bonds"], 30 * t);
+    ASSERT_EQ(s["rings_by_size"].size(), 2u);
+    EXPECT_EQ(s["rings_by_size"]["5"], 12);
+    EXPECT_EQ(s["rings_by_size"]["6"], 10 * t - 10);
+    EXPECT_EQ(s["dual"]["atoms_by_bond_count"].size(), 1u);
+    EXPECT_EQ(s["dual"]["atoms_by_bond_count"]["3"], 20 * t);
+    EXPECT_EQ(s["optimization"]["strained_atoms_after"], 0);
+    EXPECT_EQ(s["remesh"]["long"], 0);
+    EXPECT_EQ(s["remesh"]["short"], 0);
+    EXPECT_EQ(s["genus"], 0);
+    EXPECT_EQ(s["remeshed_mesh"]["self_intersections"]["pairs"], 0);
+    expect_deck_keeps_neighbours(out, s["atoms"].get<std::size_t>());
+  }
+  save_mesh(test::stretched(make_icosphere({7.0, 3}), 0, 1.05), dir / "ellipsoid.off");
+  EXPECT_EQ(run("build " + (dir / "ellipsoid.off").string() + " -o " + (dir / "ellipsoid").string() + " --lattice"),
+            2);
+  EXPECT_EQ(run("build " + (dir / "sphere.off").string() + " -o " + (dir / "turned").string() +
+                " --lattice --lattice-turn 30"),
+            2);
+  // (30, 0) has 3 times the radius of (10, 0).
+  EXPECT_EQ(run("build " + (dir / "sphere.off").string() + " -o " + (dir / "wide").string() +
+                " --lattice --atoms 2000 --chirality 30,0"),
+            2);
+  for (const char* refused : {"ellipsoid", "turned", "wide"}) EXPECT_FALSE(fs::exists(dir / refused / "summary.json"));
+  fs::remove_all(dir);
+}
+
 // A scan's debris: a sphere with a speck (a sphere of radius 0.2) and a stray triangle beside it. Both are removed
 // before the remesh: no atoms on top of each other, and the sphere converges as it does alone.
 TEST(BuildCommand, ComponentsSmallerThanAC20CageAreRemoved) {

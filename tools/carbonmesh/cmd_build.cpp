@@ -232,6 +232,11 @@ int run_build(BuildOptions& o) {
                    "remeshing it (hexagons only, no 5-7 pairs; an open tube becomes a nanotube, --chirality N,M "
                    "sets its indices)",
                    source);
+    else if (!o.in.empty() && is_whole_sphere(mesh, scaled.edge))
+      spdlog::info("{}: the surface is a sphere: --lattice folds a triangular lattice onto an icosahedron instead of "
+                   "remeshing it (the icosahedral fullerene nearest its size: 12 pentagons, no heptagons; --chirality "
+                   "H,K sets its Goldberg-Coxeter indices)",
+                   source);
     try {
       remeshed = remesh(mesh, o.remesh);
     } catch (const InputError& e) {  // name the input
@@ -269,14 +274,8 @@ int run_build(BuildOptions& o) {
   if (const double atoms = static_cast<double>(dual.atoms());
       !o.in.empty() && std::abs(atoms - scaled.expected_atoms) > 0.1 * scaled.expected_atoms) {
     if (o.lattice)
-      spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the lattice sites inside the outline, "
-                   "less the border triangles taken off, cover {:.0f}% of the input's area ({})",
-                   source, atoms, scaled.expected_atoms, 100 * surface_area(mesh) / scaled.area,
-                   lattice.value("kind", "") == "tube"
-                       ? fmt::format("the tube's radius is {:.4f} A, the input's {:.4f} A; a short tube loses a "
-                                     "larger share at its rims",
-                                     lattice["radius"].get<double>(), lattice["input_radius"].get<double>())
-                       : std::string("a small flake loses a larger share at its border"));
+      spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: {}", source, atoms, scaled.expected_atoms,
+                   lattice_shortfall(lattice, 100 * surface_area(mesh) / scaled.area));
     else
       spdlog::warn("{}: {:.0f} atoms where the area promised about {:.0f}: the remeshed surface has {:.0f}% of the "
                    "input's area (detail finer than the edges, such as noise, is bridged) and a mean edge of {:.3f} A "
@@ -455,9 +454,11 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_flag("--topology", opt->topology, "also write structure-full.data: atom_style full with Bonds and Angles (other force fields)");
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
   cmd->add_flag("--lattice", opt->lattice,
-                "flat or cylindrical input: cut it from a triangular lattice of edge sqrt(3) b, flat or rolled into "
-                "a tube, instead of remeshing it (graphene or a nanotube: hexagons only; a flat sheet has one lattice "
-                "line along the longest straight side of its outline: a zigzag edge there)");
+                "flat, cylindrical or spherical input: cut it from a triangular lattice of edge sqrt(3) b, flat or "
+                "rolled into a tube, or fold that lattice onto an icosahedron, instead of remeshing it (graphene or a "
+                "nanotube: hexagons only; a sphere: the icosahedral fullerene C_20T nearest its size, 12 pentagons "
+                "and hexagons; a flat sheet has one lattice line along the longest straight side of its outline: a "
+                "zigzag edge there)");
   cmd->add_option("--lattice-turn", opt->lattice_turn,
                   "with --lattice on a flat input or a part of a cylinder that does not go around its axis: turn the "
                   "lattice by this many degrees from the longest straight side (0: a zigzag edge there, 30: an "
@@ -465,7 +466,9 @@ void add_build_command(CLI::App& app, Action& action) {
       ->needs("--lattice");
   cmd->add_option("--chirality", opt->chirality,
                   "with --lattice on an open tube: its chiral indices N,M (N,0 zigzag, N,N armchair; "
-                  "radius sqrt(3) b sqrt(N^2 + NM + M^2) / (2 pi); default: the indices nearest the input's radius)")
+                  "radius sqrt(3) b sqrt(N^2 + NM + M^2) / (2 pi)); on a sphere: the fullerene's Goldberg-Coxeter "
+                  "indices N,M (C_20T, T = N^2 + NM + M^2; 1,1 is C60; N,0 and N,N symmetry Ih, others chiral); "
+                  "default: the indices nearest the input's radius")
       ->delimiter(',')
       ->expected(2)
       ->check(non_negative_number())

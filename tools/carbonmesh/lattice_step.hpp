@@ -1,6 +1,7 @@
-// `build --lattice`: a flat input cut from a triangular lattice of edge a = sqrt(3) b, or a cylindrical one from that
-// lattice rolled into a tube, instead of remeshed (carbonmesh/remesh/lattice_sheet.hpp, lattice_tube.hpp), and the
-// hint `build` gives for such an input without it.
+// `build --lattice`: a flat input cut from a triangular lattice of edge a = sqrt(3) b, a cylindrical one from that
+// lattice rolled into a tube, a sphere replaced by that lattice folded onto an icosahedron, instead of remeshed
+// (carbonmesh/remesh/lattice_sheet.hpp, lattice_tube.hpp, lattice_sphere.hpp), and the hint `build` gives for such an
+// input without it.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -15,9 +16,11 @@
 #include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/lattice_sheet.hpp"
+#include "carbonmesh/remesh/lattice_sphere.hpp"
 #include "carbonmesh/remesh/lattice_tube.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/remesher.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
 
 namespace carbonmesh::cli {
 
@@ -40,8 +43,20 @@ inline bool is_cylinder(const Cylinder& cylinder, double edge) {
   return cylinder.distance <= kFlatShare * edge && 2 * std::acos(-1.0) * cylinder.radius <= kMaxTubeEdges * edge;
 }
 
-// --chirality N,M is refused where the tube's radius would be more than this many times the input's, or less than
-// its inverse: the input is unrolled to the tube's circumference, and that far off it is not the input's shape.
+// A closed surface is a sphere when no vertex is farther from the sphere that fits it best than kFlatShare of the
+// lattice edge, and it has one component and genus 0 (checked by the caller: the topology of a mesh whose vertices
+// lie on one sphere can still be another).
+inline bool is_sphere(const Sphere& sphere, double edge) { return sphere.distance <= kFlatShare * edge; }
+
+inline bool is_whole_sphere(const TriMesh& mesh, double edge) {
+  if (has_border(mesh)) return false;
+  const Topology t = topology(mesh);
+  return t.genus == 0 && t.components == 1 && is_sphere(sphere_fit(mesh), edge);
+}
+
+// --chirality N,M is refused where the tube's (or the fullerene's) radius would be more than this many times the
+// input's, or less than its inverse: the input is unrolled to the tube's circumference (or replaced by the fullerene),
+// and that far off it is not the input's shape.
 constexpr double kMaxTubeRatio = 2.0;
 
 // What the user asked of the lattice: a flat sheet's turn, a tube's chiral indices (each default when not given).
@@ -53,7 +68,7 @@ struct LatticeOptions {
 struct LatticeStep {
   RemeshResult result;  // the figures a remesh would give (0 iterations)
   nlohmann::json json;  // summary.json's "lattice"
-  std::optional<TriMesh> surface;  // a tube's: its cylinder, for the atoms to stay on instead of the input
+  std::optional<TriMesh> surface;  // a tube's: its cylinder, a fullerene's: itself, for the atoms to stay on
 };
 
 namespace detail {
@@ -174,28 +189,105 @@ inline nlohmann::json cut_curved_sheet(TriMesh& mesh, std::optional<TriMesh>& su
           {"dropped_triangles", sheet.dropped}};
 }
 
+// A sphere replaced by the Goldberg-Coxeter sphere nearest its radius (or of the indices asked for), `surface` by that
+// too; summary.json's "lattice".
+inline nlohmann::json cut_fullerene(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
+                                    const Sphere& sphere, double edge, const LatticeOptions& options) {
+  if (options.turn_deg)
+    throw InputError(fmt::format("{}: --lattice-turn turns a sheet's lattice, and this surface is a sphere (folded onto "
+                                 "an icosahedron: --chirality H,K sets its Goldberg-Coxeter indices)",
+                                 source));
+  const GoldbergIndices nearest = nearest_goldberg_indices(sphere.radius, edge);
+  const GoldbergIndices indices =
+      options.chirality ? GoldbergIndices{options.chirality->n, options.chirality->m} : nearest;
+  naming_input(source, [&] { check_goldberg_coxeter(indices.h, indices.k); });
+  if (const double ratio = fullerene_radius(indices, edge) / sphere.radius;
+      options.chirality && (ratio > kMaxTubeRatio || ratio < 1 / kMaxTubeRatio))
+    throw InputError(fmt::format("{}: the ({}, {}) fullerene's radius {:.4f} A is {:.3g} times the input's {:.4f} A "
+                                 "(more than {:g} times either way): the indices nearest the input's radius are ({}, "
+                                 "{}), or scale the input by {:.4g} to fit the fullerene (--scale, --size, --atoms)",
+                                 source, indices.h, indices.k, ratio * sphere.radius, ratio, sphere.radius,
+                                 kMaxTubeRatio, nearest.h, nearest.k, ratio));
+  LatticeFullerene fullerene = naming_input(source, [&] { return lattice_fullerene(mesh, sphere, edge, indices); });
+  mesh = std::move(fullerene.mesh);
+  surface = mesh;
+  const long t = triangulation_number(indices.h, indices.k);
+  const bool chiral = indices.k != 0 && indices.k != indices.h;
+  spdlog::info("{}: the triangular lattice of edge {:.4f} A folded onto an icosahedron, Goldberg-Coxeter indices ({}, "
+               "{}), T = {}: the icosahedral fullerene C{} (symmetry {}) of radius {:.4f} A (the input's {:.4f} A{}): "
+               "{} vertices, {} triangles",
+               source, edge, indices.h, indices.k, t, 20 * t, chiral ? "I, chiral" : "Ih", fullerene.radius,
+               sphere.radius, options.chirality ? "" : ", the nearest a fullerene can have", mesh.n_vertices(),
+               mesh.n_faces());
+  if (std::abs(fullerene.radius - sphere.radius) > 0.05 * sphere.radius)
+    spdlog::warn("{}: the C{} fullerene's radius {:.4f} A is {:.0f}% off the input's {:.4f} A: the atoms follow the "
+                 "fullerene",
+                 source, 20 * t, fullerene.radius, 100 * (fullerene.radius - sphere.radius) / sphere.radius,
+                 sphere.radius);
+  return {{"kind", "fullerene"},
+          {"edge", edge},
+          {"indices", {indices.h, indices.k}},
+          {"triangulation_number", t},
+          {"symmetry", chiral ? "I" : "Ih"},
+          {"radius", fullerene.radius},
+          {"input_radius", sphere.radius},
+          {"centre", {sphere.centre[0], sphere.centre[1], sphere.centre[2]}},
+          {"sphericity", sphere.distance},
+          {"dropped_triangles", 0}};
+}
+
 }  // namespace detail
 
-// Replaces the flat or cylindrical `mesh` by the lattice cut to its outline (pieces smaller than `min_area`
-// dropped). Throws InputError naming `source` if the surface is neither flat nor cylindrical, if an option does not
-// fit its kind, or if the cut keeps nothing.
+// Why a lattice holds another number of atoms than the input's area promised (`percent`: the lattice's area over the
+// input's, in percent).
+inline std::string lattice_shortfall(const nlohmann::json& lattice, double percent) {
+  const std::string kind = lattice.value("kind", "");
+  if (kind == "fullerene") {
+    const long t = lattice["triangulation_number"].get<long>();
+    return fmt::format("an icosahedral fullerene has 20 T atoms, T = h^2 + hk + k^2, and C{} (indices ({}, {})) has "
+                       "a radius of {:.4f} A where the input has {:.4f} A",
+                       20 * t, lattice["indices"][0].get<int>(), lattice["indices"][1].get<int>(),
+                       lattice["radius"].get<double>(), lattice["input_radius"].get<double>());
+  }
+  return fmt::format("the lattice sites inside the outline, less the border triangles taken off, cover {:.0f}% of the "
+                     "input's area ({})",
+                     percent,
+                     kind == "tube" ? fmt::format("the tube's radius is {:.4f} A, the input's {:.4f} A; a short tube "
+                                                  "loses a larger share at its rims",
+                                                  lattice["radius"].get<double>(), lattice["input_radius"].get<double>())
+                                    : std::string("a small flake loses a larger share at its border"));
+}
+
+// Replaces the flat, cylindrical or spherical `mesh` by the lattice cut to its outline or folded onto an icosahedron
+// (pieces smaller than `min_area` dropped). Throws InputError naming `source` if the surface is none of these, if an
+// option does not fit its kind, or if the cut keeps nothing.
 inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double edge, const LatticeOptions& options,
                                const EdgeInterval& interval, double min_area) {
   const auto start = std::chrono::steady_clock::now();
   LatticeStep step;
   step.result.before = topology(mesh);
+  const Topology& before = step.result.before;
   const Flatness plane = flatness(mesh);
   if (is_flat(plane, edge)) {
     step.json = detail::cut_sheet(mesh, source, plane, edge, options);
+  } else if (before.boundary_loops == 0) {
+    const Sphere sphere = sphere_fit(mesh);
+    if (!is_sphere(sphere, edge))
+      throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical or spherical surface, and this one is "
+                                   "closed and a vertex is {:.4g} A from the sphere that fits it best (more than {:.2g} "
+                                   "A)",
+                                   source, sphere.distance, kFlatShare * edge));
+    if (before.genus != 0 || before.components != 1)
+      throw InputError(fmt::format("{}: --lattice folds the lattice onto one sphere, and this surface lies on a sphere "
+                                   "but has {} components and genus {}",
+                                   source, before.components, before.genus));
+    step.json = detail::cut_fullerene(mesh, step.surface, source, sphere, edge, options);
   } else {
-    if (step.result.before.boundary_loops == 0)
-      throw InputError(fmt::format("{}: --lattice needs a flat or cylindrical surface, and this one is closed (a "
-                                   "vertex is {:.4g} A from the plane that fits it best)",
-                                   source, plane.distance));
     const Cylinder cylinder = cylinder_fit(mesh);
     if (!is_cylinder(cylinder, edge))
-      throw InputError(fmt::format("{}: --lattice needs a flat or cylindrical surface, and a vertex is {:.4g} A from "
-                                   "the plane and {:.4g} A from the cylinder that fit it best (more than {:.2g} A)",
+      throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical or spherical surface, and a vertex is "
+                                   "{:.4g} A from the plane and {:.4g} A from the cylinder that fit it best (more than "
+                                   "{:.2g} A; a sphere must be closed)",
                                    source, plane.distance, cylinder.distance, kFlatShare * edge));
     if (const auto angles = angles_along_surface(mesh, cylinder))
       step.json = detail::cut_curved_sheet(mesh, step.surface, source, cylinder, *angles, edge, options);
