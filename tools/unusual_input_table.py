@@ -2,7 +2,8 @@
 """Valid inputs unlike the shared models, built with `carbonmesh build` (docs/reliability.md).
 
 Each input is generated here into a fresh temporary folder (with `carbonmesh shape` or a few lines of Python:
-nothing is copied from elsewhere): a dense icosphere made small, debris beside a sphere, radial noise, flipped
+nothing is copied from elsewhere): a dense icosphere made small (also folded into a fullerene, `--lattice`), debris
+beside a sphere, radial noise, flipped
 faces, two components, a flat disc, an ellipsoid, open sheets and tubes, a triangular flake (also cut from a
 lattice, `--lattice`, as is the flat annulus), a thin torus, a star prism with sharp creases, a thin helix. Each is
 built at one or more --atoms values and the summary.json figures go into a markdown table.
@@ -118,6 +119,8 @@ def make_inputs(cli, folder):
     return [
         ("icosphere, 327680 faces (a dense scan made small)", shape("dense", "sphere", "--subdivisions", "7"),
          [2000, 20000, 1000000]),
+        ("icosphere, 327680 faces, `--lattice`", os.path.join(folder, "dense.off"), [2000, 20000, 1000000],
+         ["--lattice"]),
         ("icosphere + a speck of radius 0.2", write("speck", merged(sphere, speck)), [2000]),
         ("icosphere + one stray triangle", write("stray", merged(sphere, stray)), [2000]),
         ("icosphere with 4% radial noise", write("noisy", noisy), [2000, 20000]),
@@ -157,6 +160,10 @@ def row(name, atoms_asked, summary, seconds):
     if lattice.get("kind") == "tube":
         notes.append("(%d, %d) tube, radius %.3f A (the input's %.3f A)" % (
             lattice["chirality"][0], lattice["chirality"][1], lattice["radius"], lattice["input_radius"]))
+    if lattice.get("kind") == "fullerene":
+        notes.append("C%d, indices (%d, %d), radius %.3f A (the input's %.3f A)" % (
+            20 * lattice["triangulation_number"], lattice["indices"][0], lattice["indices"][1], lattice["radius"],
+            lattice["input_radius"]))
     if summary["percent_three_bonds"] < 100:
         notes.append("%.1f%% three-bonded" % summary["percent_three_bonds"])
     if removed:
