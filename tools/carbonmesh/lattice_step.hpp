@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -95,6 +96,26 @@ inline std::string dropped_note(std::size_t dropped) {
   return dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", dropped) : std::string();
 }
 
+// Refuses indices asked for (`what`: "tube" or "fullerene") whose radius is more than kMaxTubeRatio times the
+// input's, or less than its inverse (`ratio`: the lattice's radius over the input's).
+inline void check_asked_radius(const std::string& source, const std::string& what, std::array<int, 2> asked,
+                               std::array<int, 2> nearest, double ratio, double input_radius) {
+  if (ratio > kMaxTubeRatio || ratio < 1 / kMaxTubeRatio)
+    throw InputError(fmt::format("{}: the ({}, {}) {}'s radius {:.4f} A is {:.3g} times the input's {:.4f} A (more "
+                                 "than {:g} times either way): the indices nearest the input's radius are ({}, {}), "
+                                 "or scale the input by {:.4g} to fit the {} (--scale, --size, --atoms)",
+                                 source, asked[0], asked[1], what, ratio * input_radius, ratio, input_radius,
+                                 kMaxTubeRatio, nearest[0], nearest[1], ratio, what));
+}
+
+// Warns where the lattice (`what`: "(5, 5) tube", "C1580 fullerene") has a radius more than 5% off the input's.
+inline void warn_radius_off(const std::string& source, const std::string& what, double radius, double input_radius) {
+  if (std::abs(radius - input_radius) > 0.05 * input_radius)
+    spdlog::warn("{}: the {}'s radius {:.4f} A is {:.0f}% off the input's {:.4f} A: the atoms follow the {}", source,
+                 what, radius, 100 * (radius - input_radius) / input_radius, input_radius,
+                 what.substr(what.rfind(' ') + 1));
+}
+
 // A flat `mesh` replaced by the lattice cut to its outline; summary.json's "lattice".
 inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const Flatness& plane, double edge,
                                 const LatticeOptions& options) {
@@ -128,13 +149,10 @@ inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, c
   const Chirality nearest = nearest_chirality(cylinder.radius, edge);
   const Chirality chirality = options.chirality.value_or(nearest);
   naming_input(source, [&] { check_chirality(chirality); });
-  if (const double ratio = chiral_circumference(chirality, edge) / (2 * std::acos(-1.0) * cylinder.radius);
-      options.chirality && (ratio > kMaxTubeRatio || ratio < 1 / kMaxTubeRatio))
-    throw InputError(fmt::format("{}: the ({}, {}) tube's radius {:.4f} A is {:.3g} times the input's {:.4f} A (more "
-                                 "than {:g} times either way): the indices nearest the input's radius are ({}, {}), "
-                                 "or scale the input by {:.4g} to fit the tube (--scale, --size, --atoms)",
-                                 source, chirality.n, chirality.m, ratio * cylinder.radius, ratio, cylinder.radius,
-                                 kMaxTubeRatio, nearest.n, nearest.m, ratio));
+  if (options.chirality)
+    check_asked_radius(source, "tube", {chirality.n, chirality.m}, {nearest.n, nearest.m},
+                       chiral_circumference(chirality, edge) / (2 * std::acos(-1.0) * cylinder.radius),
+                       cylinder.radius);
   LatticeTube tube = naming_input(source, [&] { return lattice_tube(mesh, cylinder, edge, chirality); });
   mesh = std::move(tube.mesh);
   surface = std::move(tube.surface);
@@ -145,11 +163,7 @@ inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, c
                cylinder.radius, options.chirality ? "" : ", the nearest a tube can have", mesh.n_vertices(),
                mesh.n_faces(),
                dropped_note(tube.dropped));
-  if (std::abs(tube.radius - cylinder.radius) > 0.05 * cylinder.radius)
-    spdlog::warn("{}: the ({}, {}) tube's radius {:.4f} A is {:.0f}% off the input's {:.4f} A: the atoms follow the "
-                 "tube",
-                 source, chirality.n, chirality.m, tube.radius,
-                 100 * (tube.radius - cylinder.radius) / cylinder.radius, cylinder.radius);
+  warn_radius_off(source, fmt::format("({}, {}) tube", chirality.n, chirality.m), tube.radius, cylinder.radius);
   return {{"kind", "tube"},
           {"edge", edge},
           {"chirality", {chirality.n, chirality.m}},
@@ -201,13 +215,9 @@ inline nlohmann::json cut_fullerene(TriMesh& mesh, std::optional<TriMesh>& surfa
   const GoldbergIndices indices =
       options.chirality ? GoldbergIndices{options.chirality->n, options.chirality->m} : nearest;
   naming_input(source, [&] { check_goldberg_coxeter(indices.h, indices.k); });
-  if (const double ratio = fullerene_radius(indices, edge) / sphere.radius;
-      options.chirality && (ratio > kMaxTubeRatio || ratio < 1 / kMaxTubeRatio))
-    throw InputError(fmt::format("{}: the ({}, {}) fullerene's radius {:.4f} A is {:.3g} times the input's {:.4f} A "
-                                 "(more than {:g} times either way): the indices nearest the input's radius are ({}, "
-                                 "{}), or scale the input by {:.4g} to fit the fullerene (--scale, --size, --atoms)",
-                                 source, indices.h, indices.k, ratio * sphere.radius, ratio, sphere.radius,
-                                 kMaxTubeRatio, nearest.h, nearest.k, ratio));
+  if (options.chirality)
+    check_asked_radius(source, "fullerene", {indices.h, indices.k}, {nearest.h, nearest.k},
+                       fullerene_radius(indices, edge) / sphere.radius, sphere.radius);
   LatticeFullerene fullerene = naming_input(source, [&] { return lattice_fullerene(mesh, sphere, edge, indices); });
   mesh = std::move(fullerene.mesh);
   surface = mesh;
@@ -219,11 +229,7 @@ inline nlohmann::json cut_fullerene(TriMesh& mesh, std::optional<TriMesh>& surfa
                source, edge, indices.h, indices.k, t, 20 * t, chiral ? "I, chiral" : "Ih", fullerene.radius,
                sphere.radius, options.chirality ? "" : ", the nearest a fullerene can have", mesh.n_vertices(),
                mesh.n_faces());
-  if (std::abs(fullerene.radius - sphere.radius) > 0.05 * sphere.radius)
-    spdlog::warn("{}: the C{} fullerene's radius {:.4f} A is {:.0f}% off the input's {:.4f} A: the atoms follow the "
-                 "fullerene",
-                 source, 20 * t, fullerene.radius, 100 * (fullerene.radius - sphere.radius) / sphere.radius,
-                 sphere.radius);
+  warn_radius_off(source, fmt::format("C{} fullerene", 20 * t), fullerene.radius, sphere.radius);
   return {{"kind", "fullerene"},
           {"edge", edge},
           {"indices", {indices.h, indices.k}},
