@@ -152,12 +152,11 @@ TEST(LatticeFullerene, SitsOnTheInputsCentreWithTheLatticeEdge) {
   EXPECT_NEAR(f.radius, s.radius, 0.05 * s.radius);
   for (auto v : f.mesh.vertices()) EXPECT_NEAR((f.mesh.point(v) - s.centre).norm(), f.radius, 1e-9);
   EXPECT_EQ(facing(f.mesh, s.centre), 1);
-  TriMesh inward = input;
   std::vector<std::array<int, 3>> triangles = test::triangles_of(input);
   for (auto& t : triangles) std::swap(t[1], t[2]);
   std::vector<Vec3> points;
   for (auto v : input.vertices()) points.push_back(input.point(v));
-  inward = test::mesh_from(points, triangles);
+  const TriMesh inward = test::mesh_from(points, triangles);
   EXPECT_EQ(facing(lattice_fullerene(inward, s, a, g).mesh, s.centre), -1);
   EXPECT_THROW(lattice_fullerene(input, s, 0.0, g), InputError);
   EXPECT_THROW(lattice_fullerene(input, s, a, {0, 0}), InputError);

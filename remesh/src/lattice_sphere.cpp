@@ -4,10 +4,12 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 
 namespace carbonmesh {
@@ -91,11 +93,8 @@ LatticeFullerene lattice_fullerene(const TriMesh& input, const Sphere& sphere, d
   check_goldberg_coxeter(indices.h, indices.k);
   LatticeFullerene out;
   out.indices = indices;
-  TriMesh unit = make_goldberg_coxeter_sphere({1.0, indices.h, indices.k});
-  double mean = 0;
-  for (auto e : unit.edges()) mean += unit.calc_edge_length(e);
-  mean /= static_cast<double>(unit.n_edges());
-  out.radius = edge / mean;
+  const TriMesh unit = make_goldberg_coxeter_sphere({1.0, indices.h, indices.k});
+  out.radius = edge / edge_stats(unit).mean;
   // Which side the input's faces face: the sign of its volume about the sphere's centre.
   double volume = 0;
   for (auto f : input.faces()) {
@@ -109,10 +108,11 @@ LatticeFullerene lattice_fullerene(const TriMesh& input, const Sphere& sphere, d
   handles.reserve(unit.n_vertices());
   for (auto v : unit.vertices()) handles.push_back(out.mesh.add_vertex(sphere.centre + out.radius * unit.point(v)));
   for (auto f : unit.faces()) {
-    std::vector<TriMesh::VertexHandle> corners;
-    for (auto v : unit.fv_range(f)) corners.push_back(handles[static_cast<std::size_t>(v.idx())]);
+    std::array<TriMesh::VertexHandle, 3> corners;
+    std::size_t i = 0;
+    for (auto v : unit.fv_range(f)) corners[i++] = handles[static_cast<std::size_t>(v.idx())];
     if (volume < 0) std::swap(corners[1], corners[2]);
-    out.mesh.add_face(corners);
+    out.mesh.add_face(corners[0], corners[1], corners[2]);
   }
   out.mesh.update_normals();
   return out;
