@@ -275,7 +275,8 @@ TEST(BuildCommand, LatticeCutsHalfATubeAtItsOwnRadius) {
 // A sphere (an icosphere turned and shifted, scaled to about 2000 atoms): --lattice folds the lattice onto an
 // icosahedron, the fullerene nearest its radius, C2000 of indices (10, 0): 12 pentagons and hexagons only, every atom
 // three-bonded, the deck running with every atom keeping its neighbours. --chirality 7,3 gives the chiral C1580
-// instead. A stretched sphere, a sheet's --lattice-turn and indices twice the radius away are refused.
+// instead. A stretched sphere, an icosahedron, a sheet's --lattice-turn and indices twice the radius away are
+// refused.
 TEST(BuildCommand, LatticeFoldsASphereIntoAFullerene) {
   const fs::path dir = temp_dir("lattice_sphere");
   save_mesh(test::tilted(make_icosphere({7.0, 3})), dir / "sphere.off");
@@ -308,6 +309,11 @@ TEST(BuildCommand, LatticeFoldsASphereIntoAFullerene) {
   save_mesh(test::stretched(make_icosphere({7.0, 3}), 0, 1.05), dir / "ellipsoid.off");
   EXPECT_EQ(run("build " + (dir / "ellipsoid.off").string() + " -o " + (dir / "ellipsoid").string() + " --lattice"),
             2);
+  // The icosahedron's corners lie on a sphere, but its faces cover 76% of that sphere's area: not a sphere.
+  save_mesh(make_icosphere({7.0, 0}), dir / "icosahedron.off");
+  EXPECT_EQ(run("build " + (dir / "icosahedron.off").string() + " -o " + (dir / "icosahedron").string() +
+                " --lattice --atoms 500"),
+            2);
   EXPECT_EQ(run("build " + (dir / "sphere.off").string() + " -o " + (dir / "turned").string() +
                 " --lattice --lattice-turn 30"),
             2);
@@ -315,7 +321,8 @@ TEST(BuildCommand, LatticeFoldsASphereIntoAFullerene) {
   EXPECT_EQ(run("build " + (dir / "sphere.off").string() + " -o " + (dir / "wide").string() +
                 " --lattice --atoms 2000 --chirality 30,0"),
             2);
-  for (const char* refused : {"ellipsoid", "turned", "wide"}) EXPECT_FALSE(fs::exists(dir / refused / "summary.json"));
+  for (const char* refused : {"ellipsoid", "icosahedron", "turned", "wide"})
+    EXPECT_FALSE(fs::exists(dir / refused / "summary.json"));
   fs::remove_all(dir);
 }
 

@@ -45,14 +45,26 @@ inline bool is_cylinder(const Cylinder& cylinder, double edge) {
 }
 
 // A closed surface is a sphere when no vertex is farther from the sphere that fits it best than kFlatShare of the
-// lattice edge, and it has one component and genus 0 (checked by the caller: the topology of a mesh whose vertices
-// lie on one sphere can still be another).
-inline bool is_sphere(const Sphere& sphere, double edge) { return sphere.distance <= kFlatShare * edge; }
+// lattice edge, its faces cover at least kMinSphereCover of that sphere's area, and it has one component and genus 0
+// (checked by the caller: the topology of a mesh whose vertices lie on one sphere can still be another). The corners
+// of a cube or an icosahedron lie on a sphere too, but their faces cover 64% and 76% of its area; an icosphere of 80
+// faces covers 93%, of 320 faces 98%.
+constexpr double kMinSphereCover = 0.9;
+
+inline double sphere_cover(const TriMesh& mesh, const Sphere& sphere) {
+  return surface_area(mesh) / (4 * std::acos(-1.0) * sphere.radius * sphere.radius);
+}
+
+inline bool is_sphere(const Sphere& sphere, double cover, double edge) {
+  return sphere.distance <= kFlatShare * edge && cover >= kMinSphereCover;
+}
 
 inline bool is_whole_sphere(const TriMesh& mesh, double edge) {
   if (has_border(mesh)) return false;
   const Topology t = topology(mesh);
-  return t.genus == 0 && t.components == 1 && is_sphere(sphere_fit(mesh), edge);
+  if (t.genus != 0 || t.components != 1) return false;
+  const Sphere sphere = sphere_fit(mesh);
+  return is_sphere(sphere, sphere_cover(mesh, sphere), edge);
 }
 
 // --chirality N,M is refused where the tube's (or the fullerene's) radius would be more than this many times the
@@ -278,11 +290,17 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
     step.json = detail::cut_sheet(mesh, source, plane, edge, options);
   } else if (before.boundary_loops == 0) {
     const Sphere sphere = sphere_fit(mesh);
-    if (!is_sphere(sphere, edge))
+    const double cover = sphere_cover(mesh, sphere);
+    if (sphere.distance > kFlatShare * edge)
       throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical or spherical surface, and this one is "
                                    "closed and a vertex is {:.4g} A from the sphere that fits it best (more than {:.2g} "
                                    "A)",
                                    source, sphere.distance, kFlatShare * edge));
+    if (!is_sphere(sphere, cover, edge))
+      throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical or spherical surface, and this one's "
+                                   "vertices lie on a sphere of radius {:.4g} A but its faces cover {:.0f}% of that "
+                                   "sphere's area (a polyhedron; a tessellated sphere covers {:.0f}% or more)",
+                                   source, sphere.radius, 100 * cover, 100 * kMinSphereCover));
     if (before.genus != 0 || before.components != 1)
       throw InputError(fmt::format("{}: --lattice folds the lattice onto one sphere, and this surface lies on a sphere "
                                    "but has {} components and genus {}",
