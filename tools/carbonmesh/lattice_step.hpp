@@ -60,9 +60,8 @@ inline bool is_sphere(const Sphere& sphere, double cover, double edge) {
 }
 
 inline bool is_whole_sphere(const TriMesh& mesh, double edge) {
-  if (has_border(mesh)) return false;
   const Topology t = topology(mesh);
-  if (t.genus != 0 || t.components != 1) return false;
+  if (t.boundary_loops != 0 || t.genus != 0 || t.components != 1) return false;
   const Sphere sphere = sphere_fit(mesh);
   return is_sphere(sphere, sphere_cover(mesh, sphere), edge);
 }
@@ -296,7 +295,7 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
                                    "closed and a vertex is {:.4g} A from the sphere that fits it best (more than {:.2g} "
                                    "A)",
                                    source, sphere.distance, kFlatShare * edge));
-    if (!is_sphere(sphere, cover, edge))
+    if (cover < kMinSphereCover)
       throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical or spherical surface, and this one's "
                                    "vertices lie on a sphere of radius {:.4g} A but its faces cover {:.0f}% of that "
                                    "sphere's area (a polyhedron; a tessellated sphere covers {:.0f}% or more)",
