@@ -381,7 +381,7 @@ TriMesh make_open_tube(const TubeShape& shape) {
 }
 
 const std::vector<std::string>& shape_names() {
-  static const std::vector<std::string> names = {"sphere", "geodesic", "torus", "helix", "capsule", "tube"};
+  static const std::vector<std::string> names = {"sphere", "geodesic", "torus", "helix", "capsule", "capped-tube", "tube"};
   return names;
 }
 

@@ -1,6 +1,7 @@
-// `carbonmesh shape sphere|geodesic|torus|helix|capsule|tube [size options] -o OUT`
+// `carbonmesh shape sphere|geodesic|torus|helix|capsule|capped-tube|tube [size options] -o OUT`
 #include <spdlog/spdlog.h>
 
+#include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/io.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "commands.hpp"
@@ -17,11 +18,13 @@ void add_shape_command(CLI::App& app, Action& action) {
     CapsuleShape capsule;
     TubeShape tube;
     std::vector<int> indices;  // geodesic: Goldberg-Coxeter (h, k)
+    std::vector<int> chirality{5, 5};  // capped-tube: (n, m)
     double edge = 0;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("shape", "write a built-in shape, closed but for the open tube (sizes in the mesh's units, e.g. A)");
-  cmd->add_option("name", opt->name, "sphere | geodesic | torus | helix | capsule | tube (an open cylinder)")
+  cmd->add_option("name", opt->name, "sphere | geodesic | torus | helix | capsule | capped-tube (the dual of a capped nanotube) | tube (an open "
+                  "cylinder)")
       ->required()
       ->check(CLI::IsMember(shape_names()));
   cmd->add_option("-o,--output", opt->output, "output mesh (.off .obj .ply .stl)")->required();
@@ -46,8 +49,18 @@ void add_shape_command(CLI::App& app, Action& action) {
   cmd->add_option("--pitch", opt->helix.pitch, "helix: rise per turn (mesh units)")->capture_default_str();
   cmd->add_option("--turns", opt->helix.turns, "helix: number of turns (may be fractional)")->capture_default_str();
   cmd->add_option("--tube-radius", opt->helix.tube_radius, "helix: tube radius (mesh units)")->capture_default_str();
-  cmd->add_option("--length", opt->capsule.length, "capsule: length of the straight part; tube: length (mesh units)")->capture_default_str();
-  cmd->add_option("--edge", opt->edge, "torus/helix/capsule/tube: target edge length, mesh units (0: default resolution)")
+  cmd->add_option("--chirality", opt->chirality,
+                  "capped-tube: chiral indices N,M of the tube, both multiples of 5 (its caps are the halves of the "
+                  "icosahedral fullerene C_20T, T = (N^2 + NM + M^2) / 25: 5,5 from C60; default 5,5)")
+      ->expected(2)
+      ->delimiter(',');
+  cmd->add_option("--length", opt->capsule.length,
+                  "capsule: length of the straight part; capped-tube: the same, to the nearest whole period of the "
+                  "tube; tube: length (mesh units)")
+      ->capture_default_str();
+  cmd->add_option("--edge", opt->edge,
+                  "torus/helix/capsule/tube: target edge length, mesh units (0: default resolution); capped-tube: the "
+                  "lattice edge (0: 2.4595, sqrt(3) times a C-C bond of 1.42 A, the mesh's units taken as A)")
       ->capture_default_str();
   cmd->callback([&action, opt, cmd] {
     action = [opt, cmd]() -> int {
@@ -67,6 +80,18 @@ void add_shape_command(CLI::App& app, Action& action) {
         if (radius_given) opt->helix.radius = opt->sphere.radius;
         opt->helix.edge = opt->edge;
         mesh = make_helix(opt->helix);
+      } else if (opt->name == "capped-tube") {
+        if (radius_given)
+          throw InputError("shape capped-tube: --radius is not an option of it (its radius is edge |N e1 + M e2| / "
+                           "(2 pi), from --chirality and --edge)");
+        const CappedTube tube = make_capped_tube(
+            {opt->chirality[0], opt->chirality[1], opt->capsule.length, opt->edge > 0 ? opt->edge : CappedTubeShape{}.edge});
+        spdlog::info("capped tube ({}, {}): radius {:.4f}, straight part {:.4f} ({} periods of {:.4f} added to "
+                     "C{}), its dual C{} with 12 pentagons",
+                     opt->chirality[0], opt->chirality[1], tube.radius, tube.straight_length, tube.periods,
+                     tube.period, 20 * triangulation_number(opt->chirality[0] / 5, opt->chirality[1] / 5),
+                     tube.mesh.n_faces());
+        mesh = tube.mesh;
       } else if (opt->name == "capsule") {
         if (radius_given) opt->capsule.radius = opt->sphere.radius;
         opt->capsule.edge = opt->edge;

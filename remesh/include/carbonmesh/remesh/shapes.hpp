@@ -46,6 +46,34 @@ long triangulation_number(int h, int k);  // h^2 + hk + k^2
 void check_goldberg_coxeter(int h, int k);
 TriMesh make_goldberg_coxeter_sphere(const GoldbergCoxeterShape& shape);
 
+// Capped nanotube (n, m) = (5h, 5k): the icosahedral fullerene C_20T, (h, k) its Goldberg-Coxeter indices, opened
+// along a five-fold axis and lengthened by whole periods of the tube (n, m) (C60 gives the capped (5, 5) tube, C80's
+// (2, 0) cage the capped (10, 0) tube). Its triangles are the lattice's folded onto that elongated icosahedron: 12
+// vertices of valence 5 (the dual's pentagons, six in each cap), every other of valence 6, 20 T + j P faces for j
+// periods of P faces. The points lie on the capsule of the tube's radius whose straight part is the j periods: the
+// caps are the Goldberg-Coxeter sphere's halves at that radius (with no period added, the whole sphere), the periods
+// the lattice rolled onto the cylinder, evened out by springs as on the sphere. Its dual is the capped nanotube.
+struct CappedTubeShape {
+  int n = 5, m = 5;      // chiral indices, both multiples of 5
+  double length = 0;     // wanted length of the straight part (mesh units): the nearest whole number of periods
+  double edge = 2.4595121467478056;  // lattice edge (mesh units): sqrt(3) times a C-C bond of 1.42 A
+};
+struct CappedTube {
+  TriMesh mesh;
+  int periods = 0;             // tube periods added to C_20T
+  double radius = 0;           // the tube's: edge |n e1 + m e2| / (2 pi)
+  double straight_length = 0;  // of the capsule the points lie on: periods * period (mesh units)
+  double period = 0;           // the tube's translation period (mesh units)
+};
+// Throws InputError unless n, m >= 0 are multiples of 5, not both 0, and T = (n^2 + nm + m^2) / 25 is at most
+// kMaxTriangulationNumber.
+void check_capped_tube(int n, int m);
+double capped_tube_radius(int n, int m, double edge);
+double capped_tube_period(int n, int m, double edge);
+// Throws InputError for bad indices (check_capped_tube), an edge that is not positive, a negative length or one that
+// needs more than 20 kMaxTriangulationNumber faces.
+CappedTube make_capped_tube(const CappedTubeShape& shape);
+
 // A tube of radius `minor_radius` around a circle of radius `major_radius` (genus 1).
 // `edge` is the target edge length (0: chosen so the tube has 24 segments around).
 struct TorusShape {

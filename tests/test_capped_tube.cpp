@@ -1,0 +1,177 @@
+// The capped nanotube (5h, 5k) (make_capped_tube) and the lattice folded onto a net of lattice triangles under it
+// (remesh/src/lattice_net.hpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
+#include "lattice_net.hpp"
+
+using namespace carbonmesh;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The signed volume the faces enclose (positive when they face out).
+double volume(const TriMesh& m) {
+  double v = 0;
+  for (auto f : m.faces()) {
+    std::vector<Vec3> p;
+    for (auto w : m.fv_range(f)) p.push_back(m.point(w));
+    v += OpenMesh::dot(p[0], OpenMesh::cross(p[1], p[2])) / 6;
+  }
+  return v;
+}
+
+std::vector<int> valence_counts(const TriMesh& m) {
+  std::vector<int> out(12, 0);
+  for (auto v : m.vertices()) ++out[std::min<std::size_t>(11, m.valence(v))];
+  return out;
+}
+
+}  // namespace
+
+// The icosahedron's net, each face the lattice triangle 0, w, w turned by 60 degrees, folds into the Goldberg-Coxeter
+// sphere's triangulation: 10 T + 2 vertices, 20 T triangles, 12 of valence 5 and the rest of valence 6.
+TEST(LatticeNet, TheIcosahedronsNetIsTheGoldbergCoxeterTriangulation) {
+  using namespace lattice_net;
+  for (const auto& [h, k] : std::vector<std::pair<long, long>>{{1, 0}, {1, 1}, {2, 1}, {3, 3}, {4, 1}, {2, 5}}) {
+    SCOPED_TRACE(testing::Message() << "(" << h << ", " << k << ")");
+    const LatticePoint w{h, k};
+    const long t = squared_length(w);
+    // The icosahedron as a pyramid, an antiprism and a pyramid: N = 0, U_i = 1 + i, L_i = 6 + i, S = 11.
+    std::vector<NetFace> faces;
+    for (int i = 0; i < 5; ++i) {
+      const int u = 1 + i, u1 = 1 + (i + 1) % 5, lo = 6 + i, lo1 = 6 + (i + 1) % 5;
+      const LatticePoint o{0, 0}, down = turned(w, -1);
+      faces.push_back({{u, u1, 0}, {o, w, turned(w, 1)}});
+      faces.push_back({{u, lo, u1}, {o, down, w}});
+      faces.push_back({{lo, lo1, u1}, {down, down + w, w}});
+      faces.push_back({{lo, 11, lo1}, {o, down, w}});
+    }
+    const Folded folded = fold_lattice(12, faces);
+    EXPECT_EQ(static_cast<long>(folded.places.size()), 10 * t + 2);
+    ASSERT_EQ(static_cast<long>(folded.triangles.size()), 20 * t);
+    std::vector<int> valence(folded.places.size(), 0);
+    for (const auto& tri : folded.triangles)
+      for (int v : tri) ++valence[static_cast<std::size_t>(v)];
+    for (std::size_t v = 0; v < valence.size(); ++v) EXPECT_EQ(valence[v], v < 12 ? 5 : 6) << v;
+  }
+}
+
+// A net whose edge has lattice vectors of different lengths in its two faces does not fold.
+TEST(LatticeNet, RefusesFacesThatDoNotFit) {
+  using namespace lattice_net;
+  // A tetrahedron of four lattice triangles, one of them larger than its neighbours.
+  std::vector<NetFace> faces = {{{0, 2, 1}, {{{0, 0}, {1, 0}, {0, 1}}}},
+                                {{0, 1, 3}, {{{0, 0}, {1, 0}, {0, 1}}}},
+                                {{1, 2, 3}, {{{0, 0}, {1, 0}, {0, 1}}}},
+                                {{0, 3, 2}, {{{0, 0}, {2, 0}, {0, 2}}}}};
+  EXPECT_THROW(fold_lattice(4, faces), std::logic_error);
+  faces[3].at = {{{0, 0}, {1, 0}, {0, 1}}};
+  const Folded tetrahedron = fold_lattice(4, faces);  // four corners of 180 degrees: valence 3
+  EXPECT_EQ(tetrahedron.places.size(), 4u);
+  EXPECT_EQ(tetrahedron.triangles.size(), 4u);
+}
+
+// Every chirality (5h, 5k) at any length: a closed genus-0 surface facing out, 12 vertices of valence 5 (the caps'
+// pentagons) and the rest of valence 6, 20 T + j P faces, and every edge in [0.8, 1.2] times the lattice edge (so that
+// `carbonmesh build` takes it as it is).
+TEST(CappedTube, HasTwelvePentagonsAndHexagonsOnly) {
+  for (const auto& [n, m] : std::vector<std::pair<int, int>>{{5, 5}, {10, 0}, {0, 10}, {10, 5}, {15, 5}, {20, 20}}) {
+    for (double length : {0.0, 12.0, 40.0}) {
+      SCOPED_TRACE(testing::Message() << "(" << n << ", " << m << ") length " << length);
+      const double edge = 2.0;
+      const CappedTube tube = make_capped_tube({n, m, length, edge});
+      const Topology top = topology(tube.mesh);
+      EXPECT_EQ(top.boundary_loops, 0);
+      EXPECT_EQ(top.genus, 0);
+      EXPECT_EQ(top.components, 1);
+      const std::vector<int> valences = valence_counts(tube.mesh);
+      EXPECT_EQ(valences[5], 12);
+      EXPECT_EQ(valences[6], static_cast<int>(tube.mesh.n_vertices()) - 12);
+      EXPECT_GT(volume(tube.mesh), 0);
+      const EdgeStats e = edge_stats(tube.mesh);
+      EXPECT_GE(e.min, 0.8 * edge);
+      EXPECT_LE(e.max, 1.2 * edge);
+      EXPECT_NEAR(tube.radius, edge * std::sqrt(n * n + n * m + m * m) / (2 * kPi), 1e-12);
+      // The straight part is within half a period of the length asked (or the shortest: no period added).
+      if (tube.periods > 0) {
+        EXPECT_LE(std::abs(tube.straight_length - length), 0.5 * tube.period + 1e-9);
+      }
+      const long t = triangulation_number(n / 5, m / 5);
+      EXPECT_EQ(static_cast<long>(tube.mesh.n_faces()) % 2, 0);
+      EXPECT_GE(static_cast<long>(tube.mesh.n_faces()), 20 * t);
+      EXPECT_EQ(tube.periods == 0, static_cast<long>(tube.mesh.n_faces()) == 20 * t);
+    }
+  }
+}
+
+// (5, 5) with no period added is C60's triangulation, on the sphere of the tube's radius; each period of the armchair tube adds 20 faces (a ring of 10
+// hexagons and 20 atoms: C80, C100, ...), each of the (10, 0) tube 40.
+TEST(CappedTube, PeriodsAddRingsOfTheTube) {
+  // No period added: the Goldberg-Coxeter sphere of the tube's radius.
+  for (const auto& [n, m] : std::vector<std::pair<int, int>>{{5, 5}, {15, 10}}) {
+    const CappedTube sphere = make_capped_tube({n, m, 0.0, 1.0});
+    EXPECT_EQ(static_cast<long>(sphere.mesh.n_faces()), 20 * triangulation_number(n / 5, m / 5));
+    EXPECT_EQ(sphere.periods, 0);
+    EXPECT_EQ(sphere.straight_length, 0.0);
+    for (auto v : sphere.mesh.vertices()) EXPECT_NEAR(sphere.mesh.point(v).norm(), sphere.radius, 1e-9);
+  }
+  for (const auto& [n, m, per_period] : std::vector<std::tuple<int, int, std::size_t>>{{5, 5, 20}, {10, 0, 40}}) {
+    const double period = capped_tube_period(n, m, 1.0);
+    const CappedTube a = make_capped_tube({n, m, 20.0, 1.0}), b = make_capped_tube({n, m, 20.0 + 3 * period, 1.0});
+    EXPECT_EQ(b.periods, a.periods + 3);
+    EXPECT_EQ(b.mesh.n_faces(), a.mesh.n_faces() + 3 * per_period);
+    EXPECT_NEAR(b.straight_length - a.straight_length, 3 * period, 1e-9);
+  }
+  EXPECT_NEAR(capped_tube_period(5, 5, 1.0), 1.0, 1e-12);                  // armchair: one lattice edge
+  EXPECT_NEAR(capped_tube_period(10, 0, 1.0), std::sqrt(3.0), 1e-12);      // zigzag: sqrt(3) edges
+}
+
+// Away from the caps the vertices lie on the tube's cylinder and the edges run the lattice's three directions rolled
+// with the chiral angle theta: at 90 - theta, 30 - theta and 30 + theta degrees to the axis.
+TEST(CappedTube, MiddleIsTheLatticeRolledWithItsChirality) {
+  for (const auto& [n, m] : std::vector<std::pair<int, int>>{{10, 0}, {10, 10}, {15, 5}, {5, 15}}) {
+    SCOPED_TRACE(testing::Message() << "(" << n << ", " << m << ")");
+    const double edge = 1.0;
+    const CappedTube tube = make_capped_tube({n, m, 30.0, edge});
+    const TriMesh& mesh = tube.mesh;
+    const double theta = std::atan2(std::sqrt(3.0) * m, 2.0 * n + m) * 180 / kPi;
+    const double middle = 0.5 * tube.straight_length - 2 * edge;
+    ASSERT_GT(middle, 5 * edge);
+    std::size_t edges = 0;
+    for (auto e : mesh.edges()) {
+      const Vec3 p = mesh.point(mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)));
+      const Vec3 q = mesh.point(mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)));
+      if (std::abs(p[2]) > middle || std::abs(q[2]) > middle) continue;
+      ++edges;
+      EXPECT_NEAR(std::hypot(p[0], p[1]), tube.radius, 0.01 * edge);
+      const double to_axis = std::acos(std::abs((q - p).normalized()[2])) * 180 / kPi;  // 0 .. 90 degrees
+      double nearest = 180;
+      for (double expected : {90 - theta, std::abs(30 - theta), 30 + theta})
+        nearest = std::min(nearest, std::abs(to_axis - expected));
+      EXPECT_LT(nearest, 2.0) << to_axis << " degrees to the axis";
+    }
+    EXPECT_GT(edges, 100u);
+  }
+}
+
+TEST(CappedTube, RefusesIndicesThatAreNotMultiplesOfFive) {
+  EXPECT_THROW(make_capped_tube({6, 6, 10.0, 1.0}), InputError);
+  EXPECT_THROW(make_capped_tube({9, 0, 10.0, 1.0}), InputError);
+  EXPECT_THROW(make_capped_tube({0, 0, 10.0, 1.0}), InputError);
+  EXPECT_THROW(make_capped_tube({-5, 5, 10.0, 1.0}), InputError);
+  EXPECT_THROW(make_capped_tube({5, 5, -1.0, 1.0}), InputError);
+  EXPECT_THROW(make_capped_tube({5, 5, 10.0, 0.0}), InputError);
+  EXPECT_THROW(make_capped_tube({5, 5, 1e12, 1.0}), InputError);
+}
+
