@@ -326,6 +326,54 @@ TEST(BuildCommand, LatticeFoldsASphereIntoAFullerene) {
   fs::remove_all(dir);
 }
 
+// A capsule (radius 5 A, straight part 20 A, turned and shifted): --lattice folds the lattice onto an icosahedron
+// lengthened along a five-fold axis, the capped tube nearest its radius, (10, 5) with C140's halves as caps: 12
+// pentagons and hexagons only, every atom three-bonded, the deck running with every atom keeping its neighbours.
+// --chirality 10,10 gives the armchair tube instead; indices that are not multiples of 5, a flattened capsule and a
+// sheet's --lattice-turn are refused.
+TEST(BuildCommand, LatticeFoldsACapsuleIntoACappedTube) {
+  const fs::path dir = temp_dir("lattice_capsule");
+  save_mesh(test::tilted(make_capsule({5.0, 20.0, 0.0})), dir / "capsule.off");
+  const double pi = std::acos(-1.0), a = std::sqrt(3.0) * 1.42;
+  for (const auto& [indices, n, m] : {std::tuple<std::string, int, int>{"", 10, 5}, {"10,10", 10, 10}}) {
+    const fs::path out = dir / ("out" + indices);
+    ASSERT_EQ(run("build " + (dir / "capsule.off").string() + " -o " + out.string() +
+                  " --lattice --no-report --steps 100" + (indices.empty() ? "" : " --chirality " + indices)),
+              0);
+    const nlohmann::json s = read_json(out / "summary.json");
+    ASSERT_TRUE(s.contains("lattice"));
+    EXPECT_EQ(s["lattice"]["kind"], "capped_tube");
+    EXPECT_EQ(s["lattice"]["chirality"][0], n);
+    EXPECT_EQ(s["lattice"]["chirality"][1], m);
+    EXPECT_NEAR(s["lattice"]["radius"].get<double>(), a * std::sqrt(n * n + n * m + m * m) / (2 * pi), 1e-9);
+    EXPECT_NEAR(s["lattice"]["input_radius"].get<double>(), 5.0, 1e-6);
+    EXPECT_NEAR(s["lattice"]["input_length"].get<double>(), 20.0, 1e-6);
+    EXPECT_LE(std::abs(s["lattice"]["length"].get<double>() - 20.0), 0.5 * s["lattice"]["period"].get<double>());
+    const long atoms = s["atoms"].get<long>();
+    ASSERT_EQ(s["rings_by_size"].size(), 2u);
+    EXPECT_EQ(s["rings_by_size"]["5"], 12);
+    EXPECT_EQ(s["rings_by_size"]["6"], atoms / 2 - 10);
+    EXPECT_EQ(s["dual"]["atoms_by_bond_count"].size(), 1u);
+    EXPECT_EQ(s["dual"]["atoms_by_bond_count"]["3"], atoms);
+    EXPECT_EQ(s["optimization"]["strained_atoms_after"], 0);
+    EXPECT_EQ(s["genus"], 0);
+    EXPECT_EQ(s["borders"], 0);
+    EXPECT_EQ(s["remeshed_mesh"]["self_intersections"]["pairs"], 0);
+    expect_deck_keeps_neighbours(out, static_cast<std::size_t>(atoms));
+  }
+  EXPECT_EQ(run("build " + (dir / "capsule.off").string() + " -o " + (dir / "nine").string() +
+                " --lattice --chirality 9,0"),
+            2);
+  EXPECT_EQ(run("build " + (dir / "capsule.off").string() + " -o " + (dir / "turned").string() +
+                " --lattice --lattice-turn 30"),
+            2);
+  save_mesh(test::stretched(make_capsule({5.0, 20.0, 0.0}), 0, 1.05), dir / "flattened.off");
+  EXPECT_EQ(run("build " + (dir / "flattened.off").string() + " -o " + (dir / "flattened").string() + " --lattice"),
+            2);
+  for (const char* refused : {"nine", "turned", "flattened"}) EXPECT_FALSE(fs::exists(dir / refused / "summary.json"));
+  fs::remove_all(dir);
+}
+
 // A scan's debris: a sphere with a speck (a sphere of radius 0.2) and a stray triangle beside it. Both are removed
 // before the remesh: no atoms on top of each other, and the sphere converges as it does alone.
 TEST(BuildCommand, ComponentsSmallerThanAC20CageAreRemoved) {

@@ -1,8 +1,9 @@
-// The capped nanotube (5h, 5k) (make_capped_tube) and the lattice folded onto a net of lattice triangles under it
-// (remesh/src/lattice_net.hpp).
+// The capped nanotube (5h, 5k) (make_capped_tube), the lattice folded onto a net of lattice triangles under it
+// (remesh/src/lattice_net.hpp), and a capsule replaced by it (lattice_capsule.hpp: build --lattice).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/lattice_capsule.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "lattice_net.hpp"
@@ -175,3 +177,63 @@ TEST(CappedTube, RefusesIndicesThatAreNotMultiplesOfFive) {
   EXPECT_THROW(make_capped_tube({5, 5, 1e12, 1.0}), InputError);
 }
 
+// The capsule through a capsule's vertices, turned and shifted: its radius, straight length, axis and centre, every
+// vertex on it; a stretched one is no capsule.
+TEST(CapsuleFit, FindsTheCapsuleThroughTheVertices) {
+  TriMesh capsule = make_capsule({5.0, 20.0, 0.0});
+  const Vec3 axis = Vec3(1, 2, 3).normalized(), shift(4, -7, 2);
+  const Vec3 u = OpenMesh::cross(axis, Vec3(1, 0, 0)).normalized(), v = OpenMesh::cross(axis, u);
+  for (auto w : capsule.vertices()) {
+    const Vec3 p = capsule.point(w);
+    capsule.set_point(w, shift + p[0] * u + p[1] * v + p[2] * axis);
+  }
+  const Capsule fit = capsule_fit(capsule);
+  EXPECT_NEAR(fit.radius, 5.0, 1e-6);
+  EXPECT_NEAR(fit.length, 20.0, 1e-6);
+  EXPECT_LT(fit.distance, 1e-6);
+  EXPECT_NEAR(std::abs(OpenMesh::dot(fit.axis, axis)), 1.0, 1e-9);
+  EXPECT_LT((fit.centre - shift).norm(), 1e-6);
+  EXPECT_NEAR(capsule_area(fit), 2 * kPi * 5 * 20 + 4 * kPi * 25, 1e-6);
+  TriMesh flattened = make_capsule({5.0, 20.0, 0.0});
+  for (auto w : flattened.vertices()) {
+    Vec3 p = flattened.point(w);
+    p[0] *= 1.05;
+    flattened.set_point(w, p);
+  }
+  EXPECT_GT(capsule_fit(flattened).distance, 0.1);
+}
+
+// The capped tube nearest a radius: (10, 5) for 5 A at the lattice edge of graphene ((15, 0) has 5.87 A, (10, 0) 3.91
+// A), (5, 5) for C60's tube; a larger radius gives a wider tube.
+TEST(CapsuleFit, NearestCappedChirality) {
+  const double a = std::sqrt(3.0) * 1.42;
+  EXPECT_EQ(nearest_capped_chirality(5.0, a), (std::array<int, 2>{10, 5}));
+  EXPECT_EQ(nearest_capped_chirality(3.39, a), (std::array<int, 2>{5, 5}));
+  EXPECT_EQ(nearest_capped_chirality(capped_tube_radius(25, 10, a), a), (std::array<int, 2>{25, 10}));
+  EXPECT_EQ(nearest_capped_chirality(0.1, a), (std::array<int, 2>{5, 0}));
+}
+
+// The capped tube on a capsule faces the side the capsule's faces face, and lies on the capsule's axis.
+TEST(CapsuleFit, LatticeCappedTubeFollowsTheInput) {
+  const double a = std::sqrt(3.0) * 1.42;
+  TriMesh capsule = make_capsule({5.0, 20.0, 0.0});
+  const Capsule fit = capsule_fit(capsule);
+  const LatticeCappedTube out = lattice_capped_tube(capsule, fit, a, {10, 5});
+  EXPECT_GT(volume(out.mesh), 0);
+  EXPECT_EQ(valence_counts(out.mesh)[5], 12);
+  for (auto v : out.mesh.vertices()) {
+    const Vec3 p = out.mesh.point(v);
+    const double along = std::clamp(OpenMesh::dot(p - fit.centre, fit.axis), -out.length / 2, out.length / 2);
+    EXPECT_NEAR((p - fit.centre - along * fit.axis).norm(), out.radius, 1e-9);
+  }
+  TriMesh inward;
+  std::vector<TriMesh::VertexHandle> handles;
+  for (auto v : capsule.vertices()) handles.push_back(inward.add_vertex(capsule.point(v)));
+  for (auto f : capsule.faces()) {
+    std::vector<TriMesh::VertexHandle> c;
+    for (auto v : capsule.fv_range(f)) c.push_back(handles[static_cast<std::size_t>(v.idx())]);
+    inward.add_face(c[0], c[2], c[1]);
+  }
+  EXPECT_LT(volume(lattice_capped_tube(inward, fit, a, {10, 5}).mesh), 0);
+  EXPECT_THROW(lattice_capped_tube(capsule, fit, a, {9, 0}), InputError);
+}

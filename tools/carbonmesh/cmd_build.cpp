@@ -237,6 +237,12 @@ int run_build(BuildOptions& o) {
                    "remeshing it (the icosahedral fullerene nearest its size: 12 pentagons, no heptagons; --chirality "
                    "H,K sets its Goldberg-Coxeter indices)",
                    source);
+    else if (!o.in.empty() && is_whole_capsule(mesh, scaled.edge))
+      spdlog::info("{}: the surface is a capsule: --lattice folds a triangular lattice onto an icosahedron lengthened "
+                   "along a five-fold axis instead of remeshing it (a capped nanotube, its caps the halves of an "
+                   "icosahedral fullerene: 12 pentagons, no heptagons; --chirality N,M, both multiples of 5, sets its "
+                   "indices)",
+                   source);
     try {
       remeshed = remesh(mesh, o.remesh);
     } catch (const InputError& e) {  // name the input
@@ -454,10 +460,11 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_flag("--topology", opt->topology, "also write structure-full.data: atom_style full with Bonds and Angles (other force fields)");
   cmd->add_flag("--no-report", opt->no_report, "skip the defect report (DIR/analysis: report.json, plots, report.html)");
   cmd->add_flag("--lattice", opt->lattice,
-                "flat, cylindrical or spherical input: cut it from a triangular lattice of edge sqrt(3) b, flat or "
-                "rolled into a tube, or fold that lattice onto an icosahedron, instead of remeshing it (graphene or a "
-                "nanotube: hexagons only; a sphere: the icosahedral fullerene C_20T nearest its size, 12 pentagons "
-                "and hexagons; a flat sheet has one lattice line along the longest straight side of its outline: a "
+                "flat, cylindrical, spherical or capsule-shaped input: cut it from a triangular lattice of edge "
+                "sqrt(3) b, flat or rolled into a tube, or fold that lattice onto an icosahedron, round or lengthened, "
+                "instead of remeshing it (graphene or a nanotube: hexagons only; a sphere: the icosahedral fullerene "
+                "C_20T nearest its size, 12 pentagons and hexagons; a capsule: the capped (5h, 5k) tube nearest its "
+                "size, the same; a flat sheet has one lattice line along the longest straight side of its outline: a "
                 "zigzag edge there)");
   cmd->add_option("--lattice-turn", opt->lattice_turn,
                   "with --lattice on a flat input or a part of a cylinder that does not go around its axis: turn the "
@@ -467,8 +474,9 @@ void add_build_command(CLI::App& app, Action& action) {
   cmd->add_option("--chirality", opt->chirality,
                   "with --lattice on an open tube: its chiral indices N,M (N,0 zigzag, N,N armchair; "
                   "radius sqrt(3) b sqrt(N^2 + NM + M^2) / (2 pi)); on a sphere: the fullerene's Goldberg-Coxeter "
-                  "indices N,M (C_20T, T = N^2 + NM + M^2; 1,1 is C60; N,0 and N,N symmetry Ih, others chiral); "
-                  "default: the indices nearest the input's radius")
+                  "indices N,M (C_20T, T = N^2 + NM + M^2; 1,1 is C60; N,0 and N,N symmetry Ih, others chiral); on a "
+                  "capsule: the capped tube's chiral indices N,M, both multiples of 5 (its caps the halves of C_20T, T "
+                  "= (N^2 + NM + M^2) / 25); default: the indices nearest the input's radius")
       ->delimiter(',')
       ->expected(2)
       ->check(non_negative_number())

@@ -1,7 +1,7 @@
 // `build --lattice`: a flat input cut from a triangular lattice of edge a = sqrt(3) b, a cylindrical one from that
-// lattice rolled into a tube, a sphere replaced by that lattice folded onto an icosahedron, instead of remeshed
-// (carbonmesh/remesh/lattice_sheet.hpp, lattice_tube.hpp, lattice_sphere.hpp), and the hint `build` gives for such an
-// input without it.
+// lattice rolled into a tube, a sphere replaced by that lattice folded onto an icosahedron, a capsule by that
+// icosahedron lengthened into a capped tube, instead of remeshed (carbonmesh/remesh/lattice_sheet.hpp,
+// lattice_tube.hpp, lattice_sphere.hpp, lattice_capsule.hpp), and the hint `build` gives for such an input without it.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -16,6 +16,7 @@
 
 #include "carbonmesh/remesh/components.hpp"
 #include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/lattice_capsule.hpp"
 #include "carbonmesh/remesh/lattice_sheet.hpp"
 #include "carbonmesh/remesh/lattice_sphere.hpp"
 #include "carbonmesh/remesh/lattice_tube.hpp"
@@ -64,6 +65,20 @@ inline bool is_whole_sphere(const TriMesh& mesh, double edge) {
   if (t.boundary_loops != 0 || t.genus != 0 || t.components != 1) return false;
   const Sphere sphere = sphere_fit(mesh);
   return is_sphere(sphere, sphere_cover(mesh, sphere), edge);
+}
+
+// A closed surface that is no sphere is a capsule when no vertex is farther from the capsule that fits it best than
+// kFlatShare of the lattice edge and its faces cover at least kMinSphereCover of that capsule's area (one component
+// and genus 0 checked by the caller, as for the sphere).
+inline bool is_capsule(const Capsule& capsule, double cover, double edge) {
+  return capsule.distance <= kFlatShare * edge && cover >= kMinSphereCover;
+}
+
+inline bool is_whole_capsule(const TriMesh& mesh, double edge) {
+  const Topology t = topology(mesh);
+  if (t.boundary_loops != 0 || t.genus != 0 || t.components != 1) return false;
+  const Capsule capsule = capsule_fit(mesh);
+  return is_capsule(capsule, surface_area(mesh) / capsule_area(capsule), edge);
 }
 
 // --chirality N,M is refused where the tube's (or the fullerene's) radius would be more than this many times the
@@ -253,12 +268,75 @@ inline nlohmann::json cut_fullerene(TriMesh& mesh, std::optional<TriMesh>& surfa
           {"dropped_triangles", 0}};
 }
 
+// A capsule replaced by the capped tube nearest its radius (or of the indices asked for) and straight length,
+// `surface` by that too; summary.json's "lattice".
+inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
+                                      const Capsule& capsule, double edge, const LatticeOptions& options) {
+  if (options.turn_deg)
+    throw InputError(fmt::format("{}: --lattice-turn turns a sheet's lattice, and this surface is a capsule (a capped "
+                                 "tube: --chirality N,M, both multiples of 5, sets its indices)",
+                                 source));
+  const std::array<int, 2> nearest = nearest_capped_chirality(capsule.radius, edge);
+  const std::array<int, 2> chirality =
+      options.chirality ? std::array<int, 2>{options.chirality->n, options.chirality->m} : nearest;
+  naming_input(source, [&] { check_capped_tube(chirality[0], chirality[1]); });
+  if (options.chirality)
+    check_asked_radius(source, "capped tube", chirality, nearest,
+                       capped_tube_radius(chirality[0], chirality[1], edge) / capsule.radius, capsule.radius);
+  LatticeCappedTube tube = naming_input(source, [&] { return lattice_capped_tube(mesh, capsule, edge, chirality); });
+  mesh = std::move(tube.mesh);
+  surface = mesh;
+  const int h = chirality[0] / 5, k = chirality[1] / 5;
+  const long t = triangulation_number(h, k);
+  const double angle = chiral_angle_deg({chirality[0], chirality[1]});
+  const double period = capped_tube_period(chirality[0], chirality[1], edge);
+  spdlog::info("{}: a capsule of radius {:.4f} A and straight part {:.4f} A: the triangular lattice of edge {:.4f} A "
+               "folded onto an icosahedron lengthened along a five-fold axis, the ({}, {}) tube ({}, chiral angle "
+               "{:.2f} degrees) of radius {:.4f} A{} and straight part {:.4f} A ({} periods of {:.4f} A) closed by "
+               "the halves of C{} (Goldberg-Coxeter indices ({}, {})): {} vertices, {} triangles",
+               source, capsule.radius, capsule.length, edge, chirality[0], chirality[1],
+               edge_kind(std::round(angle * 1e9) / 1e9), angle, tube.radius,
+               options.chirality ? "" : " (the nearest a capped tube can have)", tube.length, tube.periods, period,
+               20 * t, h, k, mesh.n_vertices(), mesh.n_faces());
+  warn_radius_off(source, fmt::format("capped ({}, {}) tube", chirality[0], chirality[1]), tube.radius,
+                  capsule.radius);
+  if (std::abs(tube.length - capsule.length) > 0.5 * period + 1e-9 * period)
+    spdlog::warn("{}: the capped ({}, {}) tube's straight part is {:.4f} A, the input's {:.4f} A: the shortest such "
+                 "tube (C{} opened, no period added) is that long",
+                 source, chirality[0], chirality[1], tube.length, capsule.length, 20 * t);
+  return {{"kind", "capped_tube"},
+          {"edge", edge},
+          {"chirality", {chirality[0], chirality[1]}},
+          {"chiral_angle_deg", angle},
+          {"cap_indices", {h, k}},
+          {"triangulation_number", t},
+          {"periods", tube.periods},
+          {"period", period},
+          {"radius", tube.radius},
+          {"input_radius", capsule.radius},
+          {"length", tube.length},
+          {"input_length", capsule.length},
+          {"centre", {capsule.centre[0], capsule.centre[1], capsule.centre[2]}},
+          {"axis", {capsule.axis[0], capsule.axis[1], capsule.axis[2]}},
+          {"fit_distance", capsule.distance},
+          {"dropped_triangles", 0}};
+}
+
 }  // namespace detail
 
 // Why a lattice holds another number of atoms than the input's area promised (`percent`: the lattice's area over the
 // input's, in percent).
 inline std::string lattice_shortfall(const nlohmann::json& lattice, double percent) {
   const std::string kind = lattice.value("kind", "");
+  if (kind == "capped_tube") {
+    const long t = lattice["triangulation_number"].get<long>();
+    return fmt::format("a capped tube has 20 T atoms and whole periods of the tube, and the ({}, {}) tube (caps from "
+                       "C{}) has a radius of {:.4f} A and a straight part of {:.4f} A where the input has {:.4f} A and "
+                       "{:.4f} A",
+                       lattice["chirality"][0].get<int>(), lattice["chirality"][1].get<int>(), 20 * t,
+                       lattice["radius"].get<double>(), lattice["length"].get<double>(),
+                       lattice["input_radius"].get<double>(), lattice["input_length"].get<double>());
+  }
   if (kind == "fullerene") {
     const long t = lattice["triangulation_number"].get<long>();
     return fmt::format("an icosahedral fullerene has 20 T atoms, T = h^2 + hk + k^2, and C{} (indices ({}, {})) has "
@@ -275,8 +353,8 @@ inline std::string lattice_shortfall(const nlohmann::json& lattice, double perce
                                     : std::string("a small flake loses a larger share at its border"));
 }
 
-// Replaces the flat, cylindrical or spherical `mesh` by the lattice cut to its outline or folded onto an icosahedron
-// (pieces smaller than `min_area` dropped). Throws InputError naming `source` if the surface is none of these, if an
+// Replaces the flat, cylindrical, spherical or capsule-shaped `mesh` by the lattice cut to its outline or folded onto
+// an icosahedron, round or lengthened (pieces smaller than `min_area` dropped). Throws InputError naming `source` if the surface is none of these, if an
 // option does not fit its kind, or if the cut keeps nothing.
 inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double edge, const LatticeOptions& options,
                                const EdgeInterval& interval, double min_area) {
@@ -290,27 +368,44 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
   } else if (before.boundary_loops == 0) {
     const Sphere sphere = sphere_fit(mesh);
     const double cover = sphere_cover(mesh, sphere);
-    if (sphere.distance > kFlatShare * edge)
-      throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical or spherical surface, and this one is "
-                                   "closed and a vertex is {:.4g} A from the sphere that fits it best (more than {:.2g} "
-                                   "A)",
-                                   source, sphere.distance, kFlatShare * edge));
-    if (cover < kMinSphereCover)
-      throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical or spherical surface, and this one's "
-                                   "vertices lie on a sphere of radius {:.4g} A but its faces cover {:.0f}% of that "
-                                   "sphere's area (a polyhedron; a tessellated sphere covers {:.0f}% or more)",
-                                   source, sphere.radius, 100 * cover, 100 * kMinSphereCover));
-    if (before.genus != 0 || before.components != 1)
-      throw InputError(fmt::format("{}: --lattice folds the lattice onto one sphere, and this surface lies on a sphere "
-                                   "but has {} components and genus {}",
-                                   source, before.components, before.genus));
-    step.json = detail::cut_fullerene(mesh, step.surface, source, sphere, edge, options);
+    if (sphere.distance > kFlatShare * edge) {
+      const Capsule capsule = capsule_fit(mesh);
+      const double capsule_cover = surface_area(mesh) / capsule_area(capsule);
+      if (capsule.distance > kFlatShare * edge)
+        throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical, spherical or capsule-shaped surface, "
+                                     "and this one is closed and a vertex is {:.4g} A from the sphere and {:.4g} A "
+                                     "from the capsule that fit it best (more than {:.2g} A)",
+                                     source, sphere.distance, capsule.distance, kFlatShare * edge));
+      if (capsule_cover < kMinSphereCover)
+        throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical, spherical or capsule-shaped surface, "
+                                     "and this one's vertices lie on a capsule of radius {:.4g} A but its faces cover "
+                                     "{:.0f}% of that capsule's area (a polyhedron; a tessellated capsule covers {:.0f}% "
+                                     "or more)",
+                                     source, capsule.radius, 100 * capsule_cover, 100 * kMinSphereCover));
+      if (before.genus != 0 || before.components != 1)
+        throw InputError(fmt::format("{}: --lattice folds the lattice onto one capsule, and this surface lies on a "
+                                     "capsule but has {} components and genus {}",
+                                     source, before.components, before.genus));
+      step.json = detail::cut_capped_tube(mesh, step.surface, source, capsule, edge, options);
+    } else {
+      if (cover < kMinSphereCover)
+        throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical, spherical or capsule-shaped surface, "
+                                     "and this one's vertices lie on a sphere of radius {:.4g} A but its faces cover "
+                                     "{:.0f}% of that sphere's area (a polyhedron; a tessellated sphere covers {:.0f}% "
+                                     "or more)",
+                                     source, sphere.radius, 100 * cover, 100 * kMinSphereCover));
+      if (before.genus != 0 || before.components != 1)
+        throw InputError(fmt::format("{}: --lattice folds the lattice onto one sphere, and this surface lies on a "
+                                     "sphere but has {} components and genus {}",
+                                     source, before.components, before.genus));
+      step.json = detail::cut_fullerene(mesh, step.surface, source, sphere, edge, options);
+    }
   } else {
     const Cylinder cylinder = cylinder_fit(mesh);
     if (!is_cylinder(cylinder, edge))
-      throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical or spherical surface, and a vertex is "
-                                   "{:.4g} A from the plane and {:.4g} A from the cylinder that fit it best (more than "
-                                   "{:.2g} A; a sphere must be closed)",
+      throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical, spherical or capsule-shaped surface, and "
+                                   "a vertex is {:.4g} A from the plane and {:.4g} A from the cylinder that fit it best "
+                                   "(more than {:.2g} A; a sphere or a capsule must be closed)",
                                    source, plane.distance, cylinder.distance, kFlatShare * edge));
     if (const auto angles = angles_along_surface(mesh, cylinder))
       step.json = detail::cut_curved_sheet(mesh, step.surface, source, cylinder, *angles, edge, options);
