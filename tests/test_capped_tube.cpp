@@ -105,10 +105,9 @@ TEST(CappedTube, HasTwelvePentagonsAndHexagonsOnly) {
       EXPECT_GE(e.min, 0.8 * edge);
       EXPECT_LE(e.max, 1.2 * edge);
       EXPECT_NEAR(tube.radius, edge * std::sqrt(n * n + n * m + m * m) / (2 * kPi), 1e-12);
-      // The straight part is within half a period of the length asked (or the shortest: no period added).
-      if (tube.periods > 0) {
-        EXPECT_LE(std::abs(tube.straight_length - length), 0.5 * tube.period + 1e-9);
-      }
+      // The straight part is whole periods, within half a period of the length asked.
+      EXPECT_NEAR(tube.straight_length, tube.periods * tube.period, 1e-9);
+      EXPECT_LE(std::abs(tube.straight_length - length), 0.5 * tube.period + 1e-9);
       const long t = triangulation_number(n / 5, m / 5);
       EXPECT_EQ(static_cast<long>(tube.mesh.n_faces()) % 2, 0);
       EXPECT_GE(static_cast<long>(tube.mesh.n_faces()), 20 * t);

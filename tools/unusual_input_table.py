@@ -5,7 +5,7 @@ Each input is generated here into a fresh temporary folder (with `carbonmesh sha
 nothing is copied from elsewhere): a dense icosphere made small (also folded into a fullerene, `--lattice`), debris
 beside a sphere, radial noise, flipped
 faces, two components, a flat disc, an ellipsoid, open sheets and tubes, a triangular flake (also cut from a
-lattice, `--lattice`, as is the flat annulus), a thin torus, a star prism with sharp creases, a thin helix. Each is
+lattice, `--lattice`, as is the flat annulus), a capsule (also folded into a capped nanotube, `--lattice`), a thin torus, a star prism with sharp creases, a thin helix. Each is
 built at one or more --atoms values and the summary.json figures go into a markdown table.
 
     /usr/bin/python3 tools/unusual_input_table.py --build build [--out docs/reliability.md]
@@ -143,6 +143,9 @@ def make_inputs(cli, folder):
          [20000]),
         ("triangular flake (60-degree border corners)", write("flake", triangle_sheet(10)), [2000, 20000]),
         ("triangular flake, `--lattice`", os.path.join(folder, "flake.off"), [2000, 20000], ["--lattice"]),
+        ("capsule (radius 5, straight part 20)", shape("capsule", "capsule", "--radius", "5", "--length", "20"),
+         [2000, 20000]),
+        ("capsule, `--lattice`", os.path.join(folder, "capsule.off"), [2000, 20000], ["--lattice"]),
         ("torus, tube radius 1.5 of 10", shape("torus", "torus", "--major", "10", "--minor", "1.5"), [20000]),
         ("five-pointed star prism (36 and 90 degree creases)", write("star", star_prism()), [20000]),
         ("thin helix (tube radius 1 of 6, 4 turns)",
@@ -164,6 +167,11 @@ def row(name, atoms_asked, summary, seconds):
         notes.append("C%d, indices (%d, %d), radius %.3f A (the input's %.3f A)" % (
             20 * lattice["triangulation_number"], lattice["indices"][0], lattice["indices"][1], lattice["radius"],
             lattice["input_radius"]))
+    if lattice.get("kind") == "capped_tube":
+        notes.append("(%d, %d) capped tube, caps from C%d, radius %.3f A and straight part %.2f A (the input's %.3f "
+                     "and %.2f A)" % (lattice["chirality"][0], lattice["chirality"][1],
+                                      20 * lattice["triangulation_number"], lattice["radius"], lattice["length"],
+                                      lattice["input_radius"], lattice["input_length"]))
     if summary["percent_three_bonds"] < 100:
         notes.append("%.1f%% three-bonded" % summary["percent_three_bonds"])
     if removed:

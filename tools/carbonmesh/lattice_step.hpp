@@ -300,10 +300,6 @@ inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& sur
                20 * t, h, k, mesh.n_vertices(), mesh.n_faces());
   warn_radius_off(source, fmt::format("capped ({}, {}) tube", chirality[0], chirality[1]), tube.radius,
                   capsule.radius);
-  if (std::abs(tube.length - capsule.length) > 0.5 * period + 1e-9 * period)
-    spdlog::warn("{}: the capped ({}, {}) tube's straight part is {:.4f} A, the input's {:.4f} A: the shortest such "
-                 "tube (C{} opened, no period added) is that long",
-                 source, chirality[0], chirality[1], tube.length, capsule.length, 20 * t);
   return {{"kind", "capped_tube"},
           {"edge", edge},
           {"chirality", {chirality[0], chirality[1]}},
