@@ -33,7 +33,6 @@ using lattice_net::operator*;
 using lattice_net::operator-;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kSpringIterations = 50;
 
 struct Layout {
   LatticePoint w{}, period{};  // the icosahedron's edge and the tube's translation vector
@@ -198,26 +197,8 @@ CappedTube make_capped_tube(const CappedTubeShape& shape) {
     throw std::logic_error(fmt::format("capped tube ({}, {}): {} vertices and {} triangles, not {} and {}", shape.n,
                                        shape.m, mesh.n_vertices(), mesh.n_faces(), expected / 2 + 2, expected));
 
-  // Springs towards the mean edge, each step back onto the capsule (each step reads the old positions only).
-  double mean = 0;
-  for (auto e : mesh.edges()) mean += mesh.calc_edge_length(e);
-  mean /= static_cast<double>(mesh.n_edges());
-  std::vector<Vec3> next(mesh.n_vertices());
-  const int count = static_cast<int>(mesh.n_vertices());
-  for (int it = 0; it < kSpringIterations; ++it) {
-#pragma omp parallel for schedule(static) if (count >= 20000)
-    for (int v = 0; v < count; ++v) {
-      const TriMesh::VertexHandle vh(v);
-      Vec3 force(0, 0, 0);
-      for (auto u : mesh.vv_range(vh)) {
-        const Vec3 d = mesh.point(u) - mesh.point(vh);
-        const double length = d.norm();
-        force += (length - mean) / length * d;
-      }
-      next[static_cast<std::size_t>(v)] = onto_capsule(mesh.point(vh) + 0.3 * force, r, half_straight);
-    }
-    for (auto v : mesh.vertices()) mesh.set_point(v, next[static_cast<std::size_t>(v.idx())]);
-  }
+  // The sphere's springs, each step back onto the capsule.
+  icosahedral::even_out(mesh, [&](const Vec3& p) { return onto_capsule(p, r, half_straight); });
   mesh.update_normals();
   CappedTube out;
   out.mesh = std::move(mesh);

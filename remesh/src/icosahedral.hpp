@@ -53,11 +53,10 @@ inline Vec3 spherical_point(const Vec3& a, const Vec3& b, const Vec3& c, double 
 
 constexpr int kSpringIterations = 50;
 
-// Spring relaxation on the sphere of `radius` about the origin towards the mean edge: evens out the density within
-// the icosahedron's faces, so the dual optimisation has less to flow (C998460: 225 L-BFGS iterations instead of 671),
-// though the spread of the edges near the 12 corners grows (longest / shortest 1.34 instead of 1.25 at frequency 129
-// with sqrt(3)). Each step reads the old positions only (in parallel, the same for any thread count).
-inline void even_out_on_sphere(TriMesh& mesh, double radius) {
+// Spring relaxation toward the mean edge, each step's points put back onto a surface by `onto` (a point -> its point
+// on the surface). Each step reads the old positions only (in parallel, the same for any thread count).
+template <typename Onto>
+void even_out(TriMesh& mesh, const Onto& onto) {
   double mean = 0;
   for (auto e : mesh.edges()) mean += mesh.calc_edge_length(e);
   mean /= static_cast<double>(mesh.n_edges());
@@ -73,10 +72,17 @@ inline void even_out_on_sphere(TriMesh& mesh, double radius) {
         const double l = d.norm();
         force += (l - mean) / l * d;
       }
-      next[static_cast<std::size_t>(i)] = (mesh.point(v) + 0.3 * force).normalized() * radius;
+      next[static_cast<std::size_t>(i)] = onto(mesh.point(v) + 0.3 * force);
     }
     for (auto v : mesh.vertices()) mesh.set_point(v, next[static_cast<std::size_t>(v.idx())]);
   }
+}
+
+// The springs on the sphere of `radius` about the origin: they even out the density within the icosahedron's faces,
+// so the dual optimisation has less to flow (C998460: 225 L-BFGS iterations instead of 671), though the spread of the
+// edges near the 12 corners grows (longest / shortest 1.34 instead of 1.25 at frequency 129 with sqrt(3)).
+inline void even_out_on_sphere(TriMesh& mesh, double radius) {
+  even_out(mesh, [radius](const Vec3& p) { return p.normalized() * radius; });
 }
 
 }  // namespace carbonmesh::icosahedral

@@ -3,8 +3,6 @@
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
-#include <unsupported/Eigen/NonLinearOptimization>
-#include <unsupported/Eigen/NumericalDiff>
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +10,9 @@
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
+#include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "least_squares_fit.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -94,18 +94,8 @@ Capsule capsule_fit(const TriMesh& mesh) {
   Eigen::VectorXd x(7);
   x << 0, 0, 0, 0, 0, radius, std::max(0.0, extent - radius);
   if (!x.allFinite() || !(radius > 0)) return out;
-  Eigen::NumericalDiff<CapsuleResiduals> differences(residuals);
-  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<CapsuleResiduals>> solve(differences);
-  solve.parameters.xtol = 1e-14;
-  solve.parameters.ftol = 1e-14;
-  solve.parameters.maxfev = 4000;
-  solve.minimize(x);
-  if (!x.allFinite()) return out;
-  Eigen::Vector3d axis = residuals.axis(x);
-  Eigen::Index largest = 0;
-  axis.cwiseAbs().maxCoeff(&largest);
-  if (axis[largest] < 0) axis = -axis;
-  out.axis = vec3(axis);
+  if (!least_squares_fit::minimize(residuals, x, 4000)) return out;
+  out.axis = vec3(least_squares_fit::canonical_axis(residuals.axis(x)));
   out.centre = vec3(mean + residuals.centre(x));
   out.radius = std::abs(x[5]);
   out.length = 2 * std::abs(x[6]);
@@ -148,14 +138,7 @@ LatticeCappedTube lattice_capped_tube(const TriMesh& input, const Capsule& capsu
   out.radius = tube.radius;
   out.length = tube.straight_length;
   // Which side the input's faces face: the sign of its volume about the capsule's centre.
-  double volume = 0;
-  for (auto f : input.faces()) {
-    const auto h = input.halfedge_handle(f);
-    const Vec3 a = input.point(input.from_vertex_handle(h)) - capsule.centre,
-               b = input.point(input.to_vertex_handle(h)) - capsule.centre,
-               c = input.point(input.to_vertex_handle(input.next_halfedge_handle(h))) - capsule.centre;
-    volume += OpenMesh::dot(a, OpenMesh::cross(b, c));
-  }
+  const double volume = signed_volume(input, capsule.centre);
   // The tube's z axis onto the capsule's axis (the rotation about z x axis), centred on its centre.
   const Eigen::Vector3d z(0, 0, 1), to = eigen(capsule.axis).normalized();
   const Eigen::Matrix3d turn = Eigen::Quaterniond::FromTwoVectors(z, to).toRotationMatrix();

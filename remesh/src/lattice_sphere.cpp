@@ -98,14 +98,7 @@ LatticeFullerene lattice_fullerene(const TriMesh& input, const Sphere& sphere, d
   const TriMesh unit = make_goldberg_coxeter_sphere({1.0, indices.h, indices.k});
   out.radius = edge / edge_stats(unit).mean;
   // Which side the input's faces face: the sign of its volume about the sphere's centre.
-  double volume = 0;
-  for (auto f : input.faces()) {
-    const auto h = input.halfedge_handle(f);
-    const Vec3 a = input.point(input.from_vertex_handle(h)) - sphere.centre,
-               b = input.point(input.to_vertex_handle(h)) - sphere.centre,
-               c = input.point(input.to_vertex_handle(input.next_halfedge_handle(h))) - sphere.centre;
-    volume += OpenMesh::dot(a, OpenMesh::cross(b, c));
-  }
+  const double volume = signed_volume(input, sphere.centre);
   std::vector<TriMesh::VertexHandle> handles;
   handles.reserve(unit.n_vertices());
   for (auto v : unit.vertices()) handles.push_back(out.mesh.add_vertex(sphere.centre + out.radius * unit.point(v)));

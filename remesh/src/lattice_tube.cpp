@@ -3,8 +3,6 @@
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
-#include <unsupported/Eigen/NonLinearOptimization>
-#include <unsupported/Eigen/NumericalDiff>
 
 #include <algorithm>
 #include <deque>
@@ -14,6 +12,7 @@
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/lattice_sheet.hpp"
 #include "lattice_cut.hpp"
+#include "least_squares_fit.hpp"
 
 namespace carbonmesh {
 namespace {
@@ -108,18 +107,8 @@ Cylinder cylinder_fit(const TriMesh& mesh) {
   x << 0, 0, -def[0] / 2, -def[1] / 2, std::sqrt(std::max(0.0, def[0] * def[0] / 4 + def[1] * def[1] / 4 - def[2]));
   if (!x.allFinite() || !(x[4] > 0)) return out;
   // The least-squares cylinder (Levenberg-Marquardt, forward differences).
-  Eigen::NumericalDiff<CylinderResiduals> differences(residuals);
-  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<CylinderResiduals>> solve(differences);
-  solve.parameters.xtol = 1e-14;
-  solve.parameters.ftol = 1e-14;
-  solve.parameters.maxfev = 2000;
-  solve.minimize(x);
-  if (!x.allFinite()) return out;
-  Eigen::Vector3d axis = residuals.axis(x);
-  Eigen::Index largest = 0;
-  axis.cwiseAbs().maxCoeff(&largest);
-  if (axis[largest] < 0) axis = -axis;
-  out.axis = vec3(axis);
+  if (!least_squares_fit::minimize(residuals, x, 2000)) return out;
+  out.axis = vec3(least_squares_fit::canonical_axis(residuals.axis(x)));
   out.point = vec3(centre + x[2] * residuals.u0 + x[3] * residuals.v0);
   out.point -= OpenMesh::dot(out.point - vec3(centre), out.axis) * out.axis;  // level with the centroid
   out.radius = std::abs(x[4]);

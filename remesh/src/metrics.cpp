@@ -184,6 +184,16 @@ double surface_area(const TriMesh& mesh) {
   return area;
 }
 
+double signed_volume(const TriMesh& mesh, const Vec3& about) {
+  double six = 0;  // six times the volume, in face order
+  for (auto f : mesh.faces()) {
+    auto it = mesh.cfv_iter(f);
+    const Vec3 a = mesh.point(*it++) - about, b = mesh.point(*it++) - about, c = mesh.point(*it) - about;
+    six += OpenMesh::dot(a, OpenMesh::cross(b, c));
+  }
+  return six / 6;
+}
+
 AngleStats angle_stats(const TriMesh& mesh) {
   AngleStats a{180.0, 0.0};
   bool any = false;

@@ -268,6 +268,22 @@ inline nlohmann::json cut_fullerene(TriMesh& mesh, std::optional<TriMesh>& surfa
           {"dropped_triangles", 0}};
 }
 
+// Refuses a closed surface whose vertices lie on a `what` ("sphere" or "capsule") of `radius` if its faces cover less
+// than kMinSphereCover of that shape's area (`cover`: their share; a polyhedron's corners can lie on it) or if it is
+// not one component of genus 0.
+inline void check_whole(const std::string& source, const std::string& what, double radius, double cover,
+                        const Topology& before) {
+  if (cover < kMinSphereCover)
+    throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical, spherical or capsule-shaped surface, and "
+                                 "this one's vertices lie on a {} of radius {:.4g} A but its faces cover {:.0f}% of "
+                                 "that {}'s area (a polyhedron; a tessellated {} covers {:.0f}% or more)",
+                                 source, what, radius, 100 * cover, what, what, 100 * kMinSphereCover));
+  if (before.genus != 0 || before.components != 1)
+    throw InputError(fmt::format("{}: --lattice folds the lattice onto one {}, and this surface lies on a {} but has {} "
+                                 "components and genus {}",
+                                 source, what, what, before.components, before.genus));
+}
+
 // A capsule replaced by the capped tube nearest its radius (or of the indices asked for) and straight length,
 // `surface` by that too; summary.json's "lattice".
 inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
@@ -372,28 +388,10 @@ inline LatticeStep cut_lattice(TriMesh& mesh, const std::string& source, double 
                                      "and this one is closed and a vertex is {:.4g} A from the sphere and {:.4g} A "
                                      "from the capsule that fit it best (more than {:.2g} A)",
                                      source, sphere.distance, capsule.distance, kFlatShare * edge));
-      if (capsule_cover < kMinSphereCover)
-        throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical, spherical or capsule-shaped surface, "
-                                     "and this one's vertices lie on a capsule of radius {:.4g} A but its faces cover "
-                                     "{:.0f}% of that capsule's area (a polyhedron; a tessellated capsule covers {:.0f}% "
-                                     "or more)",
-                                     source, capsule.radius, 100 * capsule_cover, 100 * kMinSphereCover));
-      if (before.genus != 0 || before.components != 1)
-        throw InputError(fmt::format("{}: --lattice folds the lattice onto one capsule, and this surface lies on a "
-                                     "capsule but has {} components and genus {}",
-                                     source, before.components, before.genus));
+      detail::check_whole(source, "capsule", capsule.radius, capsule_cover, before);
       step.json = detail::cut_capped_tube(mesh, step.surface, source, capsule, edge, options);
     } else {
-      if (cover < kMinSphereCover)
-        throw InputError(fmt::format("{}: --lattice needs a flat, cylindrical, spherical or capsule-shaped surface, "
-                                     "and this one's vertices lie on a sphere of radius {:.4g} A but its faces cover "
-                                     "{:.0f}% of that sphere's area (a polyhedron; a tessellated sphere covers {:.0f}% "
-                                     "or more)",
-                                     source, sphere.radius, 100 * cover, 100 * kMinSphereCover));
-      if (before.genus != 0 || before.components != 1)
-        throw InputError(fmt::format("{}: --lattice folds the lattice onto one sphere, and this surface lies on a "
-                                     "sphere but has {} components and genus {}",
-                                     source, before.components, before.genus));
+      detail::check_whole(source, "sphere", sphere.radius, cover, before);
       step.json = detail::cut_fullerene(mesh, step.surface, source, sphere, edge, options);
     }
   } else {

@@ -57,6 +57,10 @@ ValenceStats valence_stats(const TriMesh& mesh);
 // Total area of the faces.
 double surface_area(const TriMesh& mesh);
 
+// The volume the faces enclose, signed: positive where they face away from the inside (for a closed surface the same
+// about any point; `about` is where the cones to the faces start).
+double signed_volume(const TriMesh& mesh, const Vec3& about);
+
 struct AngleStats {
   double min_deg = 0, max_deg = 0;
 };
