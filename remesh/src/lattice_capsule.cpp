@@ -23,12 +23,7 @@ constexpr std::size_t kFitPoints = 4096;
 // The residuals of the capsule fit: each point's distance to the axis segment less the radius. Parameters (alpha,
 // beta, x, y, z, r, l): the axis axis0 + alpha u0 + beta v0 (normalised) through x u0 + y v0 + z axis0 (the points
 // are relative to the first centre), the radius r, the straight part from -l to +l along the axis.
-struct CapsuleResiduals {
-  using Scalar = double;
-  using InputType = Eigen::VectorXd;
-  using ValueType = Eigen::VectorXd;
-  using JacobianType = Eigen::MatrixXd;
-  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+struct CapsuleResiduals : least_squares_fit::Residuals {
 
   const std::vector<Eigen::Vector3d>* points;
   Eigen::Vector3d axis0, u0, v0;

@@ -39,12 +39,7 @@ Vec3 square_to(const Vec3& w) {
 
 // The residuals of the cylinder fit: each vertex's distance to the axis less the radius. Parameters (alpha, beta,
 // x, y, r): the axis axis0 + alpha u0 + beta v0 (normalised) through centre + x u0 + y v0, the radius r.
-struct CylinderResiduals {
-  using Scalar = double;
-  using InputType = Eigen::VectorXd;
-  using ValueType = Eigen::VectorXd;
-  using JacobianType = Eigen::MatrixXd;
-  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+struct CylinderResiduals : least_squares_fit::Residuals {
 
   const std::vector<Eigen::Vector3d>* points;  // relative to `centre`
   Eigen::Vector3d axis0, u0, v0;

@@ -7,6 +7,15 @@
 
 namespace carbonmesh::least_squares_fit {
 
+// The types an Eigen residual functor declares (a fit's functor derives from it).
+struct Residuals {
+  using Scalar = double;
+  using InputType = Eigen::VectorXd;
+  using ValueType = Eigen::VectorXd;
+  using JacobianType = Eigen::MatrixXd;
+  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+};
+
 // Minimises the sum of squares of `residuals` (an Eigen functor: inputs(), values(), operator()(x, f)) from x, to a
 // relative change of 1e-14 or `max_evaluations` evaluations. False if x ends not finite.
 template <typename Residuals>

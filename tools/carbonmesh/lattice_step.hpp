@@ -56,29 +56,28 @@ inline double sphere_cover(const TriMesh& mesh, const Sphere& sphere) {
   return surface_area(mesh) / (4 * std::acos(-1.0) * sphere.radius * sphere.radius);
 }
 
-inline bool is_sphere(const Sphere& sphere, double cover, double edge) {
-  return sphere.distance <= kFlatShare * edge && cover >= kMinSphereCover;
+// Every vertex within kFlatShare of the lattice edge from the fitted sphere or capsule (`distance`), the faces covering
+// at least kMinSphereCover of its area (`cover`: their share).
+inline bool fits_closed_shape(double distance, double cover, double edge) {
+  return distance <= kFlatShare * edge && cover >= kMinSphereCover;
+}
+
+inline bool is_one_closed_genus0(const TriMesh& mesh) {
+  const Topology t = topology(mesh);
+  return t.boundary_loops == 0 && t.genus == 0 && t.components == 1;
 }
 
 inline bool is_whole_sphere(const TriMesh& mesh, double edge) {
-  const Topology t = topology(mesh);
-  if (t.boundary_loops != 0 || t.genus != 0 || t.components != 1) return false;
+  if (!is_one_closed_genus0(mesh)) return false;
   const Sphere sphere = sphere_fit(mesh);
-  return is_sphere(sphere, sphere_cover(mesh, sphere), edge);
+  return fits_closed_shape(sphere.distance, sphere_cover(mesh, sphere), edge);
 }
 
-// A closed surface that is no sphere is a capsule when no vertex is farther from the capsule that fits it best than
-// kFlatShare of the lattice edge and its faces cover at least kMinSphereCover of that capsule's area (one component
-// and genus 0 checked by the caller, as for the sphere).
-inline bool is_capsule(const Capsule& capsule, double cover, double edge) {
-  return capsule.distance <= kFlatShare * edge && cover >= kMinSphereCover;
-}
-
+// A closed surface that is no sphere is a capsule by the same rules, with the capsule that fits it best.
 inline bool is_whole_capsule(const TriMesh& mesh, double edge) {
-  const Topology t = topology(mesh);
-  if (t.boundary_loops != 0 || t.genus != 0 || t.components != 1) return false;
+  if (!is_one_closed_genus0(mesh)) return false;
   const Capsule capsule = capsule_fit(mesh);
-  return is_capsule(capsule, surface_area(mesh) / capsule_area(capsule), edge);
+  return fits_closed_shape(capsule.distance, surface_area(mesh) / capsule_area(capsule), edge);
 }
 
 // --chirality N,M is refused where the tube's (or the fullerene's) radius would be more than this many times the
@@ -120,6 +119,12 @@ inline std::string with_article(const std::string& word) { return (word.front() 
 // The end of a cut's log line: the triangles left out where they touched the rest at one corner only, if any.
 inline std::string dropped_note(std::size_t dropped) {
   return dropped > 0 ? fmt::format(", {} touching the rest at one corner only left out", dropped) : std::string();
+}
+
+// Refuses --lattice-turn on a surface that is no sheet (`what`: which it is, and what sets its lattice instead).
+inline void refuse_turn(const LatticeOptions& options, const std::string& source, const std::string& what) {
+  if (options.turn_deg)
+    throw InputError(fmt::format("{}: --lattice-turn turns a sheet's lattice, and this surface is {}", source, what));
 }
 
 // Refuses indices asked for (`what`: "tube" or "fullerene") whose radius is more than kMaxTubeRatio times the
@@ -168,10 +173,7 @@ inline nlohmann::json cut_sheet(TriMesh& mesh, const std::string& source, const 
 // summary.json's "lattice".
 inline nlohmann::json cut_tube(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
                                const Cylinder& cylinder, double edge, const LatticeOptions& options) {
-  if (options.turn_deg)
-    throw InputError(fmt::format("{}: --lattice-turn turns a sheet's lattice, and this surface is a tube (it goes "
-                                 "around its axis: --chirality N,M sets its lattice)",
-                                 source));
+  refuse_turn(options, source, "a tube (it goes around its axis: --chirality N,M sets its lattice)");
   const Chirality nearest = nearest_chirality(cylinder.radius, edge);
   const Chirality chirality = options.chirality.value_or(nearest);
   naming_input(source, [&] { check_chirality(chirality); });
@@ -233,10 +235,8 @@ inline nlohmann::json cut_curved_sheet(TriMesh& mesh, std::optional<TriMesh>& su
 // too; summary.json's "lattice".
 inline nlohmann::json cut_fullerene(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
                                     const Sphere& sphere, double edge, const LatticeOptions& options) {
-  if (options.turn_deg)
-    throw InputError(fmt::format("{}: --lattice-turn turns a sheet's lattice, and this surface is a sphere (folded onto "
-                                 "an icosahedron: --chirality H,K sets its Goldberg-Coxeter indices)",
-                                 source));
+  refuse_turn(options, source,
+              "a sphere (folded onto an icosahedron: --chirality H,K sets its Goldberg-Coxeter indices)");
   const GoldbergIndices nearest = nearest_goldberg_indices(sphere.radius, edge);
   const GoldbergIndices indices =
       options.chirality ? GoldbergIndices{options.chirality->n, options.chirality->m} : nearest;
@@ -288,10 +288,7 @@ inline void check_whole(const std::string& source, const std::string& what, doub
 // `surface` by that too; summary.json's "lattice".
 inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
                                       const Capsule& capsule, double edge, const LatticeOptions& options) {
-  if (options.turn_deg)
-    throw InputError(fmt::format("{}: --lattice-turn turns a sheet's lattice, and this surface is a capsule (a capped "
-                                 "tube: --chirality N,M, both multiples of 5, sets its indices)",
-                                 source));
+  refuse_turn(options, source, "a capsule (a capped tube: --chirality N,M, both multiples of 5, sets its indices)");
   const std::array<int, 2> nearest = nearest_capped_chirality(capsule.radius, edge);
   const std::array<int, 2> chirality =
       options.chirality ? std::array<int, 2>{options.chirality->n, options.chirality->m} : nearest;
