@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -82,23 +84,22 @@ class Folding {
       edges_.emplace(key, Edge{base, steps});
       base += steps - 1;
     }
-    // The lattice points strictly inside each face, ranked row by row over the face's bounding box.
-    boxes_.resize(faces_.size());
+    // The lattice points strictly inside each face, ranked row by row (a row's are consecutive).
+    rows_.resize(faces_.size());
     for (std::size_t f = 0; f < faces_.size(); ++f) {
-      Box& box = boxes_[f];
+      Rows& rows = rows_[f];
       const NetFace& t = faces_[f];
-      box.i0 = std::min({t.at[0][0], t.at[1][0], t.at[2][0]});
-      box.j0 = std::min({t.at[0][1], t.at[1][1], t.at[2][1]});
-      box.width = std::max({t.at[0][0], t.at[1][0], t.at[2][0]}) - box.i0 + 1;
-      box.height = std::max({t.at[0][1], t.at[1][1], t.at[2][1]}) - box.j0 + 1;
-      box.rank.assign(static_cast<std::size_t>(box.width * box.height), -1);
-      box.base = base;
+      rows.j0 = std::min({t.at[0][1], t.at[1][1], t.at[2][1]});
+      const long j1 = std::max({t.at[0][1], t.at[1][1], t.at[2][1]});
+      rows.base = base;
       long inner = 0;
-      for (long j = box.j0; j < box.j0 + box.height; ++j)
-        for (long i = box.i0; i < box.i0 + box.width; ++i) {
-          const Weights w = weights(static_cast<int>(f), {i, j}, 1);
-          if (w[0] > 0 && w[1] > 0 && w[2] > 0) box.rank[static_cast<std::size_t>((j - box.j0) * box.width + (i - box.i0))] = inner++;
-        }
+      for (long j = rows.j0; j <= j1; ++j) {
+        const auto [lo, hi] = inner_range(static_cast<int>(f), j);
+        rows.lo.push_back(lo);
+        rows.hi.push_back(hi);
+        rows.before.push_back(inner);
+        inner += std::max(0L, hi - lo + 1);
+      }
       base += inner;
     }
     places_.assign(static_cast<std::size_t>(base), Place{});
@@ -107,13 +108,23 @@ class Folding {
   Folded fold() {
     Folded out;
     for (std::size_t f = 0; f < faces_.size(); ++f) {
-      const Box& box = boxes_[f];
-      for (long j = box.j0 - 1; j < box.j0 + box.height; ++j)
-        for (long i = box.i0 - 1; i < box.i0 + box.width; ++i) {
+      const Rows& rows = rows_[f];
+      const long j1 = rows.j0 + static_cast<long>(rows.lo.size()) - 1;
+      for (long j = rows.j0 - 1; j <= j1; ++j) {
+        // The unit triangles between rows j and j + 1 whose centroid can lie in the face: the face's extent there is
+        // that of its sections at the two rows (its corners lie on rows).
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (long row : {j, j + 1}) {
+          const auto [a, b] = section(static_cast<int>(f), row);
+          if (a <= b) lo = std::min(lo, a), hi = std::max(hi, b);
+        }
+        if (!(lo <= hi)) continue;
+        for (long i = static_cast<long>(std::floor(lo)) - 1; i <= static_cast<long>(std::ceil(hi)); ++i) {
           add_if_inside(out.triangles, static_cast<int>(f), {{{i, j}, {i + 1, j}, {i, j + 1}}}, {3 * i + 1, 3 * j + 1});
           add_if_inside(out.triangles, static_cast<int>(f), {{{i + 1, j}, {i + 1, j + 1}, {i, j + 1}}},
                         {3 * i + 2, 3 * j + 2});
         }
+      }
     }
     for (std::size_t v = 0; v < places_.size(); ++v)
       if (places_[v].face < 0) throw std::logic_error(fmt::format("lattice net: vertex {} is on no triangle", v));
@@ -125,10 +136,41 @@ class Folding {
   struct Edge {
     long base, steps;  // the ids of its inner points: base + s - 1 for s = 1 .. steps - 1 from its smaller corner
   };
-  struct Box {
-    long i0 = 0, j0 = 0, width = 0, height = 0, base = 0;
-    std::vector<long> rank;
+  struct Rows {  // the inner points of a face: on row j0 + r, i from lo[r] to hi[r], ranked from base + before[r]
+    long j0 = 0, base = 0;
+    std::vector<long> lo, hi, before;
   };
+
+  // Each weight of the point (i, j) in face f's chart is W_c(0) + i s_c: the pairs (W_c(0), s_c).
+  std::array<std::pair<long, long>, 3> row_weights(int f, long j) const {
+    const Weights at0 = weights(f, {0, j}, 1), at1 = weights(f, {1, j}, 1);
+    return {{{at0[0], at1[0] - at0[0]}, {at0[1], at1[1] - at0[1]}, {at0[2], at1[2] - at0[2]}}};
+  }
+
+  // The i with every weight of (i, j) positive: [lo, hi], empty when lo > hi.
+  std::pair<long, long> inner_range(int f, long j) const {
+    long lo = std::numeric_limits<long>::min() / 4, hi = std::numeric_limits<long>::max() / 4;
+    for (const auto& [w0, slope] : row_weights(f, j)) {
+      if (slope > 0) lo = std::max(lo, floor_div(-w0, slope) + 1);         // w0 + i slope > 0
+      else if (slope < 0) hi = std::min(hi, ceil_div(w0, -slope) - 1);    // w0 - i |slope| > 0
+      else if (w0 <= 0) return {1, 0};
+    }
+    return {lo, hi};
+  }
+
+  // The real i with every weight of (i, j) at least 0 (the face's section by row j): [lo, hi], empty when lo > hi.
+  std::pair<double, double> section(int f, long j) const {
+    double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+    for (const auto& [w0, slope] : row_weights(f, j)) {
+      if (slope > 0) lo = std::max(lo, static_cast<double>(-w0) / static_cast<double>(slope));
+      else if (slope < 0) hi = std::min(hi, static_cast<double>(w0) / static_cast<double>(-slope));
+      else if (w0 < 0) return {1, 0};
+    }
+    return {lo, hi};
+  }
+
+  static long floor_div(long a, long b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
+  static long ceil_div(long a, long b) { return -floor_div(-a, b); }
 
   // The barycentric weights of the point x / scale in face f's chart, times scale^2 det (integers).
   Weights weights(int f, LatticePoint x, long scale) const {
@@ -198,10 +240,12 @@ class Folding {
         throw std::logic_error("lattice net: an edge point off the lattice");
       id = e.base + step - 1;
     } else {
-      const Box& box = boxes_[static_cast<std::size_t>(f)];
-      const long r = box.rank[static_cast<std::size_t>((p[1] - box.j0) * box.width + (p[0] - box.i0))];
-      if (r < 0) throw std::logic_error("lattice net: an inner point not ranked");
-      id = box.base + r;
+      const Rows& rows = rows_[static_cast<std::size_t>(f)];
+      const long r = p[1] - rows.j0;
+      if (r < 0 || r >= static_cast<long>(rows.lo.size()) || p[0] < rows.lo[static_cast<std::size_t>(r)] ||
+          p[0] > rows.hi[static_cast<std::size_t>(r)])
+        throw std::logic_error("lattice net: an inner point not ranked");
+      id = rows.base + rows.before[static_cast<std::size_t>(r)] + (p[0] - rows.lo[static_cast<std::size_t>(r)]);
     }
     if (id < 0) throw std::logic_error("lattice net: a corner not found");
     Place& place = places_[static_cast<std::size_t>(id)];
@@ -215,7 +259,7 @@ class Folding {
   const std::vector<NetFace>& faces_;
   std::vector<std::array<Crossing, 3>> crossings_;
   std::map<std::pair<int, int>, Edge> edges_;
-  std::vector<Box> boxes_;
+  std::vector<Rows> rows_;
   std::vector<Place> places_;
 };
 
