@@ -181,4 +181,17 @@ bool add_faces(TriMesh& mesh, const std::vector<std::array<int, 3>>& faces) {
   return true;
 }
 
+std::vector<std::array<int, 3>> face_corners(const TriMesh& mesh, bool reversed) {
+  std::vector<std::array<int, 3>> out;
+  out.reserve(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    std::array<int, 3> t{};
+    std::size_t i = 0;
+    for (auto v : mesh.fv_range(f)) t[i++] = v.idx();
+    if (reversed) std::swap(t[1], t[2]);
+    out.push_back(t);
+  }
+  return out;
+}
+
 }  // namespace carbonmesh

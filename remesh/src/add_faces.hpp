@@ -17,4 +17,8 @@ namespace carbonmesh {
 // add_face() would refuse a face (a complex vertex or edge, or a failed re-linking of a patch).
 bool add_faces(TriMesh& mesh, const std::vector<std::array<int, 3>>& faces);
 
+// The corners (vertex indices) of the faces of the triangle mesh `mesh`, in face order, each turned the other way
+// (its last two corners swapped) if `reversed`: for add_faces() on a copy of its vertices.
+std::vector<std::array<int, 3>> face_corners(const TriMesh& mesh, bool reversed = false);
+
 }  // namespace carbonmesh

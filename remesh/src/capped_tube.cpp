@@ -18,6 +18,7 @@
 
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "add_faces.hpp"
 #include "icosahedral.hpp"
 #include "lattice_net.hpp"
 
@@ -184,14 +185,8 @@ CappedTube make_capped_tube(const CappedTubeShape& shape) {
   }
 
   TriMesh mesh;
-  std::vector<TriMesh::VertexHandle> handles;
-  handles.reserve(points.size());
-  for (const auto& p : points) handles.push_back(mesh.add_vertex(p));
-  for (const auto& tri : folded.triangles)
-    if (!mesh.add_face(handles[static_cast<std::size_t>(tri[0])], handles[static_cast<std::size_t>(tri[1])],
-                       handles[static_cast<std::size_t>(tri[2])])
-             .is_valid())
-      throw std::logic_error("capped tube: a triangle that does not fit its neighbours");
+  for (const auto& p : points) mesh.add_vertex(p);
+  if (!add_faces(mesh, folded.triangles)) throw std::logic_error("capped tube: a triangle that does not fit its neighbours");
   const long expected = 20 * l.T + j * l.period_triangles;
   if (static_cast<long>(mesh.n_faces()) != expected || static_cast<long>(mesh.n_vertices()) != expected / 2 + 2)
     throw std::logic_error(fmt::format("capped tube ({}, {}): {} vertices and {} triangles, not {} and {}", shape.n,

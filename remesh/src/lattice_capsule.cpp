@@ -6,12 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "add_faces.hpp"
 #include "least_squares_fit.hpp"
 
 namespace carbonmesh {
@@ -137,17 +139,9 @@ LatticeCappedTube lattice_capped_tube(const TriMesh& input, const Capsule& capsu
   // The tube's z axis onto the capsule's axis (the rotation about z x axis), centred on its centre.
   const Eigen::Vector3d z(0, 0, 1), to = eigen(capsule.axis).normalized();
   const Eigen::Matrix3d turn = Eigen::Quaterniond::FromTwoVectors(z, to).toRotationMatrix();
-  std::vector<TriMesh::VertexHandle> handles;
-  handles.reserve(tube.mesh.n_vertices());
-  for (auto v : tube.mesh.vertices())
-    handles.push_back(out.mesh.add_vertex(capsule.centre + vec3(turn * eigen(tube.mesh.point(v)))));
-  for (auto f : tube.mesh.faces()) {
-    std::array<TriMesh::VertexHandle, 3> corners;
-    std::size_t i = 0;
-    for (auto v : tube.mesh.fv_range(f)) corners[i++] = handles[static_cast<std::size_t>(v.idx())];
-    if (volume < 0) std::swap(corners[1], corners[2]);
-    out.mesh.add_face(corners[0], corners[1], corners[2]);
-  }
+  for (auto v : tube.mesh.vertices()) out.mesh.add_vertex(capsule.centre + vec3(turn * eigen(tube.mesh.point(v))));
+  if (!add_faces(out.mesh, face_corners(tube.mesh, volume < 0)))
+    throw std::logic_error("lattice capped tube: a triangle that does not fit its neighbours");
   out.mesh.update_normals();
   return out;
 }

@@ -80,10 +80,16 @@ class Folding {
           Crossing{list[1].face, (6 - sixths) % 6, at(a, list[0].slot), at(b, list[1].slot + 1)};
       crossings_[static_cast<std::size_t>(list[1].face)][static_cast<std::size_t>((list[1].slot + 2) % 3)] =
           Crossing{list[0].face, sixths, at(b, list[1].slot + 1), at(a, list[0].slot)};
-      const long steps = std::gcd(std::labs(va[0]), std::labs(va[1]));
-      edges_.emplace(key, Edge{base, steps});
-      base += steps - 1;
+      edges_.emplace(key, Edge{0, std::gcd(std::labs(va[0]), std::labs(va[1]))});
     }
+    // The edges' points numbered edge by edge in the order the faces name the edges (face by face, corner by corner).
+    for (const NetFace& t : faces_)
+      for (std::size_t c = 0; c < 3; ++c) {
+        Edge& e = edges_.at(std::minmax(t.corners[c], t.corners[(c + 1) % 3]));
+        if (e.base > 0) continue;
+        e.base = base;
+        base += e.steps - 1;
+      }
     // The lattice points strictly inside each face, ranked row by row (a row's are consecutive).
     rows_.resize(faces_.size());
     for (std::size_t f = 0; f < faces_.size(); ++f) {

@@ -31,7 +31,9 @@ struct Place {
 };
 
 struct Folded {
-  std::vector<Place> places;                  // by vertex; the polyhedron's corners are the first vertices
+  // By vertex: the polyhedron's corners (by index), then the edges' inner points (edge by edge in the order the faces
+  // name the edges, each from its smaller corner), then each face's inner points row by row (j, then i, ascending).
+  std::vector<Place> places;
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
 };
 

@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
+#include "add_faces.hpp"
 
 namespace carbonmesh {
 
@@ -99,16 +101,9 @@ LatticeFullerene lattice_fullerene(const TriMesh& input, const Sphere& sphere, d
   out.radius = edge / edge_stats(unit).mean;
   // Which side the input's faces face: the sign of its volume about the sphere's centre.
   const double volume = signed_volume(input, sphere.centre);
-  std::vector<TriMesh::VertexHandle> handles;
-  handles.reserve(unit.n_vertices());
-  for (auto v : unit.vertices()) handles.push_back(out.mesh.add_vertex(sphere.centre + out.radius * unit.point(v)));
-  for (auto f : unit.faces()) {
-    std::array<TriMesh::VertexHandle, 3> corners;
-    std::size_t i = 0;
-    for (auto v : unit.fv_range(f)) corners[i++] = handles[static_cast<std::size_t>(v.idx())];
-    if (volume < 0) std::swap(corners[1], corners[2]);
-    out.mesh.add_face(corners[0], corners[1], corners[2]);
-  }
+  for (auto v : unit.vertices()) out.mesh.add_vertex(sphere.centre + out.radius * unit.point(v));
+  if (!add_faces(out.mesh, face_corners(unit, volume < 0)))
+    throw std::logic_error("lattice fullerene: a triangle that does not fit its neighbours");
   out.mesh.update_normals();
   return out;
 }
