@@ -90,13 +90,13 @@ CappedTube make_capped_tube(const CappedTubeShape& shape) {
     throw InputError("capped tube: the length must be a number >= 0");
   const Layout l = layout(shape.n, shape.m);
   const double a = shape.edge, r = capped_tube_radius(shape.n, shape.m, a);
-  const double period = a * std::sqrt(static_cast<double>(lattice_net::squared_length(l.period)));
+  const double period = capped_tube_period(shape.n, shape.m, a);
   const long max_periods = (20 * kMaxTriangulationNumber - 20 * l.T) / l.period_triangles;
   const double wanted = std::round(shape.length / period);
   if (wanted > static_cast<double>(max_periods))
     throw InputError(fmt::format("capped tube ({}, {}): a length of {} needs more than {} triangles", shape.n, shape.m,
                                  shape.length, 20 * kMaxTriangulationNumber));
-  const long j = std::max(0L, static_cast<long>(wanted));
+  const long j = static_cast<long>(wanted);  // (the length is >= 0)
 
   // The net: N = 0, U_i = 1 + i, L_i = 6 + i, S = 11.
   const LatticePoint w = l.w, t0 = turned(w, -1), t = t0 + j * l.period, zero{0, 0};
