@@ -329,13 +329,15 @@ TEST(BuildCommand, LatticeFoldsASphereIntoAFullerene) {
 // A capsule (radius 5 A, straight part 20 A, turned and shifted): --lattice folds the lattice onto an icosahedron
 // lengthened along a five-fold axis, the capped tube nearest its radius, (10, 5) with C140's halves as caps: 12
 // pentagons and hexagons only, every atom three-bonded, the deck running with every atom keeping its neighbours.
-// --chirality 10,10 gives the armchair tube instead; indices that are not multiples of 5, a flattened capsule and a
-// sheet's --lattice-turn are refused.
+// --chirality 10,10 gives the armchair tube instead, --chirality 11,4 the chiral tube closed by ring caps (lattice
+// hexagons with a pentagon at each corner), its straight part the capsule's to 0.1 A; a tube too thin for the capsule,
+// a flattened capsule and a sheet's --lattice-turn are refused.
 TEST(BuildCommand, LatticeFoldsACapsuleIntoACappedTube) {
   const fs::path dir = temp_dir("lattice_capsule");
   save_mesh(test::tilted(make_capsule({5.0, 20.0, 0.0})), dir / "capsule.off");
   const double pi = std::acos(-1.0), a = std::sqrt(3.0) * 1.42;
-  for (const auto& [indices, n, m] : {std::tuple<std::string, int, int>{"", 10, 5}, {"10,10", 10, 10}}) {
+  for (const auto& [indices, n, m] :
+       {std::tuple<std::string, int, int>{"", 10, 5}, {"10,10", 10, 10}, {"11,4", 11, 4}}) {
     const fs::path out = dir / ("out" + indices);
     ASSERT_EQ(run("build " + (dir / "capsule.off").string() + " -o " + out.string() +
                   " --lattice --no-report --steps 100" + (indices.empty() ? "" : " --chirality " + indices)),
@@ -348,7 +350,10 @@ TEST(BuildCommand, LatticeFoldsACapsuleIntoACappedTube) {
     EXPECT_NEAR(s["lattice"]["radius"].get<double>(), a * std::sqrt(n * n + n * m + m * m) / (2 * pi), 1e-9);
     EXPECT_NEAR(s["lattice"]["input_radius"].get<double>(), 5.0, 1e-6);
     EXPECT_NEAR(s["lattice"]["input_length"].get<double>(), 20.0, 1e-6);
-    EXPECT_LE(std::abs(s["lattice"]["length"].get<double>() - 20.0), 0.5 * s["lattice"]["period"].get<double>());
+    const bool ring = n % 5 != 0 || m % 5 != 0;
+    EXPECT_EQ(s["lattice"]["caps"], ring ? "hexagon_ring" : "icosahedral");
+    EXPECT_LE(std::abs(s["lattice"]["length"].get<double>() - 20.0),
+              ring ? 0.1 : 0.5 * s["lattice"]["period"].get<double>());
     const long atoms = s["atoms"].get<long>();
     ASSERT_EQ(s["rings_by_size"].size(), 2u);
     EXPECT_EQ(s["rings_by_size"]["5"], 12);
@@ -361,8 +366,8 @@ TEST(BuildCommand, LatticeFoldsACapsuleIntoACappedTube) {
     EXPECT_EQ(s["remeshed_mesh"]["self_intersections"]["pairs"], 0);
     expect_deck_keeps_neighbours(out, static_cast<std::size_t>(atoms));
   }
-  EXPECT_EQ(run("build " + (dir / "capsule.off").string() + " -o " + (dir / "nine").string() +
-                " --lattice --chirality 9,0"),
+  EXPECT_EQ(run("build " + (dir / "capsule.off").string() + " -o " + (dir / "thin").string() +
+                " --lattice --chirality 2,1"),
             2);
   EXPECT_EQ(run("build " + (dir / "capsule.off").string() + " -o " + (dir / "turned").string() +
                 " --lattice --lattice-turn 30"),
@@ -370,7 +375,7 @@ TEST(BuildCommand, LatticeFoldsACapsuleIntoACappedTube) {
   save_mesh(test::stretched(make_capsule({5.0, 20.0, 0.0}), 0, 1.05), dir / "flattened.off");
   EXPECT_EQ(run("build " + (dir / "flattened.off").string() + " -o " + (dir / "flattened").string() + " --lattice"),
             2);
-  for (const char* refused : {"nine", "turned", "flattened"}) EXPECT_FALSE(fs::exists(dir / refused / "summary.json"));
+  for (const char* refused : {"thin", "turned", "flattened"}) EXPECT_FALSE(fs::exists(dir / refused / "summary.json"));
   fs::remove_all(dir);
 }
 

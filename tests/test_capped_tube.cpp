@@ -1,10 +1,11 @@
-// The capped nanotube (5h, 5k) (make_capped_tube), the lattice folded onto a net of lattice triangles under it
+// The capped nanotube (make_capped_tube: icosahedral caps for (5h, 5k), ring caps otherwise), the lattice folded onto a net of lattice triangles under it
 // (remesh/src/lattice_net.hpp), and a capsule replaced by it (lattice_capsule.hpp: build --lattice).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -15,6 +16,7 @@
 #include "carbonmesh/remesh/metrics.hpp"
 #include "carbonmesh/remesh/shapes.hpp"
 #include "lattice_net.hpp"
+#include "ring_capped_tube.hpp"
 
 using namespace carbonmesh;
 
@@ -141,7 +143,8 @@ TEST(CappedTube, PeriodsAddRingsOfTheTube) {
 // Away from the caps the vertices lie on the tube's cylinder and the edges run the lattice's three directions rolled
 // with the chiral angle theta: at 90 - theta, 30 - theta and 30 + theta degrees to the axis.
 TEST(CappedTube, MiddleIsTheLatticeRolledWithItsChirality) {
-  for (const auto& [n, m] : std::vector<std::pair<int, int>>{{10, 0}, {10, 10}, {15, 5}, {5, 15}}) {
+  for (const auto& [n, m] :
+       std::vector<std::pair<int, int>>{{10, 0}, {10, 10}, {15, 5}, {5, 15}, {9, 0}, {12, 12}, {13, 4}, {4, 13}}) {
     SCOPED_TRACE(testing::Message() << "(" << n << ", " << m << ")");
     const double edge = 1.0;
     const CappedTube tube = make_capped_tube({n, m, 30.0, edge});
@@ -166,14 +169,75 @@ TEST(CappedTube, MiddleIsTheLatticeRolledWithItsChirality) {
   }
 }
 
-TEST(CappedTube, RefusesIndicesThatAreNotMultiplesOfFive) {
-  EXPECT_THROW(make_capped_tube({6, 6, 10.0, 1.0}), InputError);
-  EXPECT_THROW(make_capped_tube({9, 0, 10.0, 1.0}), InputError);
+// A ring cap's steps add up to the chiral vector and, each turned by i * 60 degrees, close the hexagon; every tube
+// but the thinnest has one ((3, 3), (4, 2) and (5, 0) and wider: n^2 + nm + m^2 >= 25).
+TEST(RingCap, StepsCloseTheHexagonForEveryTubeButTheThinnest) {
+  using namespace lattice_net;
+  for (int n = 0; n <= 24; ++n)
+    for (int m = 0; m <= 24; ++m) {
+      if (n == 0 && m == 0) continue;
+      SCOPED_TRACE(testing::Message() << "(" << n << ", " << m << ")");
+      const auto steps = ring_cap::ring_cap_steps(n, m);
+      const long size = triangulation_number(n, m);
+      ASSERT_EQ(steps.has_value(), size >= 25);
+      if (!steps) continue;
+      LatticePoint sum{0, 0}, closed{0, 0};
+      for (int i = 0; i < 6; ++i) {
+        sum = sum + (*steps)[static_cast<std::size_t>(i)];
+        closed = closed + turned((*steps)[static_cast<std::size_t>(i)], i);
+      }
+      EXPECT_EQ(sum, (LatticePoint{n, m}));
+      EXPECT_EQ(closed, (LatticePoint{0, 0}));
+    }
+}
+
+// Indices that are not both multiples of 5 get ring caps, at any length: a closed genus-0 surface facing out, 12
+// vertices of valence 5 (six per cap) and the rest of valence 6, every edge in [0.8, 1.2] times the lattice edge, no
+// two triangles crossing, and a straight part (the capsule with the triangles' area) within half a lattice row of the
+// length asked.
+TEST(CappedTube, RingCapsCloseAnyOtherTube) {
+  for (const auto& [n, m] : std::vector<std::pair<int, int>>{
+           {3, 3}, {4, 2}, {6, 6}, {9, 0}, {0, 9}, {7, 3}, {3, 7}, {8, 4}, {12, 1}, {17, 3}, {11, 11}}) {
+    for (double length : {0.0, 15.0, 40.0}) {
+      SCOPED_TRACE(testing::Message() << "(" << n << ", " << m << ") length " << length);
+      const double edge = 2.0;
+      const CappedTube tube = make_capped_tube({n, m, length, edge});
+      EXPECT_TRUE(tube.ring_caps);
+      const Topology top = topology(tube.mesh);
+      EXPECT_EQ(top.boundary_loops, 0);
+      EXPECT_EQ(top.genus, 0);
+      EXPECT_EQ(top.components, 1);
+      const std::vector<int> valences = valence_counts(tube.mesh);
+      EXPECT_EQ(valences[5], 12);
+      EXPECT_EQ(valences[6], static_cast<int>(tube.mesh.n_vertices()) - 12);
+      EXPECT_GT(volume(tube.mesh), 0);
+      const EdgeStats e = edge_stats(tube.mesh);
+      EXPECT_GE(e.min, 0.8 * edge);
+      EXPECT_LE(e.max, 1.2 * edge);
+      EXPECT_EQ(self_intersections(tube.mesh).pairs, 0);
+      // The triangles' area is that of the capsule the points lie on.
+      const double area = static_cast<double>(tube.mesh.n_faces()) * std::sqrt(3.0) / 4 * edge * edge;
+      if (tube.straight_length > 0) {
+        EXPECT_NEAR(area, 4 * kPi * tube.radius * tube.radius + 2 * kPi * tube.radius * tube.straight_length, 1e-6);
+      }
+      if (length > 0) {
+        const double g = std::gcd(n, m), circumference = std::sqrt(static_cast<double>(triangulation_number(n, m)));
+        EXPECT_LE(std::abs(tube.straight_length - length), g * std::sqrt(3.0) / 4 * edge / circumference + 1e-9);
+      }
+    }
+  }
+}
+
+TEST(CappedTube, RefusesBadIndices) {
+  EXPECT_THROW(make_capped_tube({2, 1, 10.0, 1.0}), InputError);  // too thin for a ring cap
+  EXPECT_THROW(make_capped_tube({4, 1, 10.0, 1.0}), InputError);
   EXPECT_THROW(make_capped_tube({0, 0, 10.0, 1.0}), InputError);
   EXPECT_THROW(make_capped_tube({-5, 5, 10.0, 1.0}), InputError);
   EXPECT_THROW(make_capped_tube({5, 5, -1.0, 1.0}), InputError);
+  EXPECT_THROW(make_capped_tube({6, 6, -1.0, 1.0}), InputError);
   EXPECT_THROW(make_capped_tube({5, 5, 10.0, 0.0}), InputError);
   EXPECT_THROW(make_capped_tube({5, 5, 1e12, 1.0}), InputError);
+  EXPECT_THROW(make_capped_tube({6, 6, 1e12, 1.0}), InputError);
 }
 
 // The capsule through a capsule's vertices, turned and shifted: its radius, straight length, axis and centre, every
@@ -234,5 +298,10 @@ TEST(CapsuleFit, LatticeCappedTubeFollowsTheInput) {
     inward.add_face(c[0], c[2], c[1]);
   }
   EXPECT_LT(volume(lattice_capped_tube(inward, fit, a, {10, 5}).mesh), 0);
-  EXPECT_THROW(lattice_capped_tube(capsule, fit, a, {9, 0}), InputError);
+  EXPECT_LT(volume(lattice_capped_tube(inward, fit, a, {11, 4}).mesh), 0);  // ring caps
+  const LatticeCappedTube ring = lattice_capped_tube(capsule, fit, a, {11, 4});
+  EXPECT_TRUE(ring.ring_caps);
+  EXPECT_GT(volume(ring.mesh), 0);
+  EXPECT_EQ(valence_counts(ring.mesh)[5], 12);
+  EXPECT_THROW(lattice_capped_tube(capsule, fit, a, {2, 1}), InputError);
 }

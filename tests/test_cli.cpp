@@ -88,24 +88,33 @@ TEST(CliShape, GeodesicIndicesWriteTheDualOfC140) {
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
-// The capped (10, 0) tube: 12 vertices of valence 5 and the rest of valence 6, which `build` takes as it is (every
-// edge inside its interval, the mean at the lattice edge): 12 pentagons in the carbon net, hexagons otherwise.
+// The capped (10, 0) tube (icosahedral caps) and the capped (9, 0) and (6, 6) tubes (ring caps): 12 vertices of
+// valence 5 and the rest of valence 6, which `build` takes as it is (every edge inside its interval, the mean at the
+// lattice edge): 12 pentagons in the carbon net, hexagons otherwise.
 TEST(CliShape, CappedTubeWritesTheDualOfACappedNanotube) {
-  const auto base = std::filesystem::temp_directory_path() / ("carbonmesh-test-capped-" + std::to_string(::getpid()));
-  const std::string path = base.string() + ".off";
-  const RunResult shape = run_cli("shape capped-tube --chirality 10,0 --length 20 -o " + path);
-  EXPECT_EQ(shape.exit_code, 0) << shape.output;
-  const RunResult stats = run_cli("stats " + path);
-  EXPECT_NE(stats.output.find("valence interior 5:12 6:"), std::string::npos) << stats.output;
-  EXPECT_NE(stats.output.find("genus 0"), std::string::npos) << stats.output;
-  const RunResult build = run_cli("build " + path + " -o " + base.string() + " --no-report");
-  EXPECT_EQ(build.exit_code, 0) << build.output;
-  EXPECT_NE(build.output.find("iterations 0"), std::string::npos) << build.output;
-  EXPECT_NE(build.output.find("rings 5:12 6:"), std::string::npos) << build.output;
-  EXPECT_EQ(build.output.find("7:"), std::string::npos) << build.output;
-  std::filesystem::remove_all(base);
-  std::filesystem::remove(path);
-  EXPECT_EQ(run_cli("shape capped-tube --chirality 6,6 -o " + path).exit_code, 2);
+  for (const char* chirality : {"10,0", "9,0", "6,6"}) {
+    SCOPED_TRACE(chirality);
+    const auto base =
+        std::filesystem::temp_directory_path() / ("carbonmesh-test-capped-" + std::to_string(::getpid()));
+    const std::string path = base.string() + ".off";
+    const RunResult shape =
+        run_cli(std::string("shape capped-tube --chirality ") + chirality + " --length 20 -o " + path);
+    EXPECT_EQ(shape.exit_code, 0) << shape.output;
+    const RunResult stats = run_cli("stats " + path);
+    EXPECT_NE(stats.output.find("valence interior 5:12 6:"), std::string::npos) << stats.output;
+    EXPECT_NE(stats.output.find("genus 0"), std::string::npos) << stats.output;
+    const RunResult build = run_cli("build " + path + " -o " + base.string() + " --no-report");
+    EXPECT_EQ(build.exit_code, 0) << build.output;
+    EXPECT_NE(build.output.find("iterations 0"), std::string::npos) << build.output;
+    EXPECT_NE(build.output.find("rings 5:12 6:"), std::string::npos) << build.output;
+    EXPECT_EQ(build.output.find("7:"), std::string::npos) << build.output;
+    std::filesystem::remove_all(base);
+    std::filesystem::remove(path);
+  }
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("carbonmesh-test-capped-" + std::to_string(::getpid()) + ".off"))
+                               .string();
+  EXPECT_EQ(run_cli("shape capped-tube --chirality 2,1 -o " + path).exit_code, 2);
   EXPECT_EQ(run_cli("shape capped-tube --radius 5 -o " + path).exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(path));
 }

@@ -21,6 +21,7 @@
 #include "add_faces.hpp"
 #include "icosahedral.hpp"
 #include "lattice_net.hpp"
+#include "ring_capped_tube.hpp"
 
 namespace carbonmesh {
 
@@ -51,23 +52,17 @@ Layout layout(int n, int m) {
   return out;
 }
 
-// The point of the capsule (radius r, straight part from -half to +half along z) nearest to p.
-Vec3 onto_capsule(const Vec3& p, double r, double half) {
-  const double z = std::clamp(p[2], -half, half);
-  Vec3 d(p[0], p[1], p[2] - z);
-  const double l = d.norm();
-  if (!(l > 0)) d = Vec3(1, 0, 0);
-  else d /= l;
-  return Vec3(0, 0, z) + r * d;
-}
-
 }  // namespace
 
 void check_capped_tube(int n, int m) {
-  if (n < 0 || m < 0 || (n == 0 && m == 0) || n % 5 != 0 || m % 5 != 0)
-    throw InputError(fmt::format("capped tube ({}, {}): both chiral indices must be multiples of 5, >= 0, one > 0 (the "
-                                 "caps are the halves of the icosahedral fullerene C_20T, (h, k) = (n, m) / 5)",
-                                 n, m));
+  if (n < 0 || m < 0 || (n == 0 && m == 0))
+    throw InputError(fmt::format("capped tube ({}, {}): the chiral indices must be >= 0, one > 0", n, m));
+  if (!icosahedral_caps(n, m)) {
+    if (triangulation_number(n, m) > 25 * kMaxTriangulationNumber)
+      throw InputError(fmt::format("capped tube ({}, {}): n^2 + nm + m^2 is more than {}", n, m,
+                                   25 * kMaxTriangulationNumber));
+    return;
+  }
   if (triangulation_number(n / 5, m / 5) > kMaxTriangulationNumber)
     throw InputError(fmt::format("capped tube ({}, {}): its caps' C_20T has T = {}, more than {}", n, m,
                                  triangulation_number(n / 5, m / 5), kMaxTriangulationNumber));
@@ -78,9 +73,13 @@ double capped_tube_radius(int n, int m, double edge) {
   return edge * std::sqrt(nn * nn + nn * mm + mm * mm) / (2 * kPi);
 }
 
+bool icosahedral_caps(int n, int m) { return n % 5 == 0 && m % 5 == 0; }
+
 double capped_tube_period(int n, int m, double edge) {
   check_capped_tube(n, m);
-  return edge * std::sqrt(static_cast<double>(lattice_net::squared_length(layout(n, m).period)));
+  const long d = std::gcd(2L * m + n, 2L * n + m);
+  const LatticePoint period{(2L * m + n) / d, -(2L * n + m) / d};
+  return edge * std::sqrt(static_cast<double>(lattice_net::squared_length(period)));
 }
 
 CappedTube make_capped_tube(const CappedTubeShape& shape) {
@@ -88,6 +87,7 @@ CappedTube make_capped_tube(const CappedTubeShape& shape) {
   if (!(shape.edge > 0) || !std::isfinite(shape.edge)) throw InputError("capped tube: the edge must be a positive number");
   if (!(shape.length >= 0) || !std::isfinite(shape.length))
     throw InputError("capped tube: the length must be a number >= 0");
+  if (!icosahedral_caps(shape.n, shape.m)) return ring_cap::make_ring_capped_tube(shape);
   const Layout l = layout(shape.n, shape.m);
   const double a = shape.edge, r = capped_tube_radius(shape.n, shape.m, a);
   const double period = capped_tube_period(shape.n, shape.m, a);
@@ -193,7 +193,7 @@ CappedTube make_capped_tube(const CappedTubeShape& shape) {
                                        shape.m, mesh.n_vertices(), mesh.n_faces(), expected / 2 + 2, expected));
 
   // The sphere's springs, each step back onto the capsule.
-  icosahedral::even_out(mesh, [&](const Vec3& p) { return onto_capsule(p, r, half_straight); });
+  icosahedral::even_out(mesh, [&](const Vec3& p) { return icosahedral::onto_capsule(p, r, half_straight); });
   mesh.update_normals();
   CappedTube out;
   out.mesh = std::move(mesh);

@@ -51,6 +51,16 @@ inline Vec3 spherical_point(const Vec3& a, const Vec3& b, const Vec3& c, double 
   return (crossing(nb, nc) + crossing(nc, na) + crossing(na, nb)).normalized();
 }
 
+// The point of the capsule (radius r, straight part from -half to +half along z) nearest to p.
+inline Vec3 onto_capsule(const Vec3& p, double r, double half) {
+  const double z = std::clamp(p[2], -half, half);
+  Vec3 d(p[0], p[1], p[2] - z);
+  const double l = d.norm();
+  if (!(l > 0)) d = Vec3(1, 0, 0);
+  else d /= l;
+  return Vec3(0, 0, z) + r * d;
+}
+
 constexpr int kSpringIterations = 50;
 
 // Spring relaxation toward the mean edge, each step's points put back onto a surface by `onto` (a point -> its point

@@ -288,38 +288,49 @@ inline void check_whole(const std::string& source, const std::string& what, doub
 // `surface` by that too; summary.json's "lattice".
 inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& surface, const std::string& source,
                                       const Capsule& capsule, double edge, const LatticeOptions& options) {
-  refuse_turn(options, source, "a capsule (a capped tube: --chirality N,M, both multiples of 5, sets its indices)");
+  refuse_turn(options, source, "a capsule (a capped tube: --chirality N,M sets its indices)");
   const std::array<int, 2> nearest = nearest_capped_chirality(capsule.radius, edge);
   const std::array<int, 2> chirality =
       options.chirality ? std::array<int, 2>{options.chirality->n, options.chirality->m} : nearest;
   naming_input(source, [&] { check_capped_tube(chirality[0], chirality[1]); });
-  if (options.chirality)
-    check_asked_radius(source, "capped tube", chirality, nearest,
+  if (options.chirality) {
+    const Chirality any = nearest_chirality(capsule.radius, edge);  // any indices: ring caps where not (5h, 5k)
+    check_asked_radius(source, "capped tube", chirality, {any.n, any.m},
                        capped_tube_radius(chirality[0], chirality[1], edge) / capsule.radius, capsule.radius);
+  }
   LatticeCappedTube tube = naming_input(source, [&] { return lattice_capped_tube(mesh, capsule, edge, chirality); });
   mesh = std::move(tube.mesh);
   surface = mesh;
-  const int h = chirality[0] / 5, k = chirality[1] / 5;
-  const long t = triangulation_number(h, k);
   const double angle = chiral_angle_deg({chirality[0], chirality[1]});
   const double period = capped_tube_period(chirality[0], chirality[1], edge);
-  spdlog::info("{}: a capsule of radius {:.4f} A and straight part {:.4f} A: the triangular lattice of edge {:.4f} A "
-               "folded onto an icosahedron lengthened along a five-fold axis, the ({}, {}) tube ({}, chiral angle "
-               "{:.2f} degrees) of radius {:.4f} A{} and straight part {:.4f} A ({} periods of {:.4f} A) closed by "
-               "the halves of C{} (Goldberg-Coxeter indices ({}, {})): {} vertices, {} triangles",
-               source, capsule.radius, capsule.length, edge, chirality[0], chirality[1],
-               edge_kind(std::round(angle * 1e9) / 1e9), angle, tube.radius,
-               options.chirality ? "" : " (the nearest a capped tube can have)", tube.length, tube.periods, period,
-               20 * t, h, k, mesh.n_vertices(), mesh.n_faces());
+  const bool ring = !icosahedral_caps(chirality[0], chirality[1]);
+  const int h = ring ? 0 : chirality[0] / 5, k = ring ? 0 : chirality[1] / 5;
+  const long t = ring ? 0 : triangulation_number(h, k);
+  const std::string tube_text =
+      fmt::format("the ({}, {}) tube ({}, chiral angle {:.2f} degrees) of radius {:.4f} A{} and straight part {:.4f} A",
+                  chirality[0], chirality[1], edge_kind(std::round(angle * 1e9) / 1e9), angle, tube.radius,
+                  options.chirality ? "" : " (the nearest a capped tube with icosahedral caps can have)", tube.length);
+  if (ring)
+    spdlog::info("{}: a capsule of radius {:.4f} A and straight part {:.4f} A: the triangular lattice of edge {:.4f} A "
+                 "folded onto a tube closed by two lattice hexagons with a pentagon at each corner, {} (period {:.4f} "
+                 "A): {} vertices, {} triangles",
+                 source, capsule.radius, capsule.length, edge, tube_text, period, mesh.n_vertices(), mesh.n_faces());
+  else
+    spdlog::info("{}: a capsule of radius {:.4f} A and straight part {:.4f} A: the triangular lattice of edge {:.4f} A "
+                 "folded onto an icosahedron lengthened along a five-fold axis, {} ({} periods of {:.4f} A) closed by "
+                 "the halves of C{} (Goldberg-Coxeter indices ({}, {})): {} vertices, {} triangles",
+                 source, capsule.radius, capsule.length, edge, tube_text, tube.periods, period, 20 * t, h, k,
+                 mesh.n_vertices(), mesh.n_faces());
   warn_radius_off(source, fmt::format("capped ({}, {}) tube", chirality[0], chirality[1]), tube.radius,
                   capsule.radius);
   return {{"kind", "capped_tube"},
           {"edge", edge},
           {"chirality", {chirality[0], chirality[1]}},
           {"chiral_angle_deg", angle},
-          {"cap_indices", {h, k}},
-          {"triangulation_number", t},
-          {"periods", tube.periods},
+          {"caps", ring ? "hexagon_ring" : "icosahedral"},
+          {"cap_indices", ring ? nlohmann::json() : nlohmann::json({h, k})},
+          {"triangulation_number", ring ? nlohmann::json() : nlohmann::json(t)},
+          {"periods", ring ? nlohmann::json() : nlohmann::json(tube.periods)},
           {"period", period},
           {"radius", tube.radius},
           {"input_radius", capsule.radius},
@@ -338,6 +349,12 @@ inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& sur
 inline std::string lattice_shortfall(const nlohmann::json& lattice, double percent) {
   const std::string kind = lattice.value("kind", "");
   if (kind == "capped_tube") {
+    if (lattice["triangulation_number"].is_null())
+      return fmt::format("a capped tube has whole rows of the lattice, and the ({}, {}) tube has a radius of {:.4f} A "
+                         "and a straight part of {:.4f} A where the input has {:.4f} A and {:.4f} A",
+                         lattice["chirality"][0].get<int>(), lattice["chirality"][1].get<int>(),
+                         lattice["radius"].get<double>(), lattice["length"].get<double>(),
+                         lattice["input_radius"].get<double>(), lattice["input_length"].get<double>());
     const long t = lattice["triangulation_number"].get<long>();
     return fmt::format("a capped tube has 20 T atoms and whole periods of the tube, and the ({}, {}) tube (caps from "
                        "C{}) has a radius of {:.4f} A and a straight part of {:.4f} A where the input has {:.4f} A and "

@@ -1,8 +1,9 @@
 #pragma once
 // A capsule (a cylinder closed by two hemispheres) replaced by a capped nanotube (`carbonmesh build --lattice`): the
 // triangulation of make_capped_tube, the lattice folded onto the icosahedron lengthened along a five-fold axis, whose
-// dual is the tube (5h, 5k) closed by the two halves of the icosahedral fullerene C_20T: 12 pentagons, hexagons
-// otherwise. The remesher cannot give that: a capsule remeshed keeps pentagon-heptagon pairs.
+// dual is the tube (5h, 5k) closed by the two halves of the icosahedral fullerene C_20T, or for other indices onto a
+// tube closed by two lattice hexagons: 12 pentagons, hexagons otherwise. The remesher cannot give that: a capsule
+// remeshed keeps pentagon-heptagon pairs.
 #include <array>
 #include <limits>
 
@@ -30,14 +31,15 @@ std::array<int, 2> nearest_capped_chirality(double radius, double edge);
 struct LatticeCappedTube {
   TriMesh mesh;          // the capped tube on the capsule's axis, centred on its centre
   std::array<int, 2> chirality{};
-  int periods = 0;       // tube periods between the caps
+  int periods = 0;       // tube periods between the caps (icosahedral caps; 0 with ring caps)
+  bool ring_caps = false;  // caps that are lattice hexagons with a pentagon at each corner (make_capped_tube)
   double radius = 0;     // the tube's radius (the capsule's is capsule.radius)
   double length = 0;     // the straight part the points lie on (the capsule's is capsule.length)
 };
 
 // The capped tube `chirality` of lattice edge `edge` whose straight part is nearest the capsule's, on its axis and
-// centre, its faces facing the side the input's faces face (out of or into the capsule). Throws InputError for indices
-// that are not (5h, 5k) (check_capped_tube) or an edge that is not positive.
+// centre, its faces facing the side the input's faces face (out of or into the capsule). Throws InputError for bad
+// indices (check_capped_tube), a tube too thin for a cap (make_capped_tube) or an edge that is not positive.
 LatticeCappedTube lattice_capped_tube(const TriMesh& input, const Capsule& capsule, double edge,
                                       std::array<int, 2> chirality);
 

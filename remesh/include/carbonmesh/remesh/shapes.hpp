@@ -46,32 +46,39 @@ long triangulation_number(int h, int k);  // h^2 + hk + k^2
 void check_goldberg_coxeter(int h, int k);
 TriMesh make_goldberg_coxeter_sphere(const GoldbergCoxeterShape& shape);
 
-// Capped nanotube (n, m) = (5h, 5k): the icosahedral fullerene C_20T, (h, k) its Goldberg-Coxeter indices, opened
-// along a five-fold axis and lengthened by whole periods of the tube (n, m) (C60 gives the capped (5, 5) tube, C80's
-// (2, 0) cage the capped (10, 0) tube). Its triangles are the lattice's folded onto that elongated icosahedron: 12
-// vertices of valence 5 (the dual's pentagons, six in each cap), every other of valence 6, 20 T + j P faces for j
-// periods of P faces. The points lie on the capsule of the tube's radius whose straight part is the j periods: the
-// caps are the Goldberg-Coxeter sphere's halves at that radius (with no period added, the whole sphere), the periods
-// the lattice rolled onto the cylinder, evened out by springs as on the sphere. Its dual is the capped nanotube.
+// Capped nanotube (n, m). For (n, m) = (5h, 5k): the icosahedral fullerene C_20T, (h, k) its Goldberg-Coxeter
+// indices, opened along a five-fold axis and lengthened by whole periods of the tube (n, m) (C60 gives the capped
+// (5, 5) tube, C80's (2, 0) cage the capped (10, 0) tube). Its triangles are the lattice's folded onto that elongated
+// icosahedron: 12 vertices of valence 5 (the dual's pentagons, six in each cap), every other of valence 6, 20 T + j P
+// faces for j periods of P faces. The points lie on the capsule of the tube's radius whose straight part is the j
+// periods: the caps are the Goldberg-Coxeter sphere's halves at that radius (with no period added, the whole sphere),
+// the periods the lattice rolled onto the cylinder, evened out by springs as on the sphere. Its dual is the capped
+// nanotube. Any other (n, m) but the thinnest (n^2 + nm + m^2 >= 25) gets ring caps (ring_capped_tube.cpp): each cap
+// a lattice hexagon with one of its six pentagons at each corner, the tube as many lattice rows long as give the
+// capsule of the length asked its area (the straight part within half a row of it); the points lie on that capsule.
 struct CappedTubeShape {
-  int n = 5, m = 5;      // chiral indices, both multiples of 5
+  int n = 5, m = 5;      // chiral indices
   double length = 0;     // wanted length of the straight part (mesh units): the nearest whole number of periods
+                         // (icosahedral caps) or lattice rows (ring caps)
   double edge = 2.4595121467478056;  // lattice edge (mesh units): sqrt(3) times a C-C bond of 1.42 A
 };
 struct CappedTube {
   TriMesh mesh;
-  int periods = 0;             // tube periods added to C_20T
+  int periods = 0;             // tube periods added to C_20T (0 with ring caps)
+  bool ring_caps = false;      // the caps are lattice hexagons with a pentagon at each corner (not (5h, 5k))
   double radius = 0;           // the tube's: edge |n e1 + m e2| / (2 pi)
-  double straight_length = 0;  // of the capsule the points lie on: periods * period (mesh units)
+  double straight_length = 0;  // of the capsule the points lie on (mesh units; icosahedral caps: periods * period)
   double period = 0;           // the tube's translation period (mesh units)
 };
-// Throws InputError unless n, m >= 0 are multiples of 5, not both 0, and T = (n^2 + nm + m^2) / 25 is at most
-// kMaxTriangulationNumber.
+// Throws InputError unless n, m >= 0, not both 0, and for multiples of 5 T = (n^2 + nm + m^2) / 25 is at most
+// kMaxTriangulationNumber (for others n^2 + nm + m^2 at most 25 times that).
 void check_capped_tube(int n, int m);
+// Whether the tube (n, m) gets the icosahedral caps (n and m multiples of 5) rather than ring caps.
+bool icosahedral_caps(int n, int m);
 double capped_tube_radius(int n, int m, double edge);
 double capped_tube_period(int n, int m, double edge);
-// Throws InputError for bad indices (check_capped_tube), an edge that is not positive, a negative length or one that
-// needs more than 20 kMaxTriangulationNumber faces.
+// Throws InputError for bad indices (check_capped_tube), a tube too thin for a ring cap, an edge that is not
+// positive, a negative length or one that needs more than 20 kMaxTriangulationNumber faces.
 CappedTube make_capped_tube(const CappedTubeShape& shape);
 
 // A tube of radius `minor_radius` around a circle of radius `major_radius` (genus 1).
