@@ -356,12 +356,14 @@ inline std::string lattice_shortfall(const nlohmann::json& lattice, double perce
                          lattice["radius"].get<double>(), lattice["length"].get<double>(),
                          lattice["input_radius"].get<double>(), lattice["input_length"].get<double>());
     const long t = lattice["triangulation_number"].get<long>();
+    const Chirality any = nearest_chirality(lattice["input_radius"].get<double>(), lattice["edge"].get<double>());
     return fmt::format("a capped tube has 20 T atoms and whole periods of the tube, and the ({}, {}) tube (caps from "
                        "C{}) has a radius of {:.4f} A and a straight part of {:.4f} A where the input has {:.4f} A and "
-                       "{:.4f} A",
+                       "{:.4f} A; --chirality {},{} (the indices nearest that radius) gives ring caps and the straight "
+                       "part within half a lattice row",
                        lattice["chirality"][0].get<int>(), lattice["chirality"][1].get<int>(), 20 * t,
                        lattice["radius"].get<double>(), lattice["length"].get<double>(),
-                       lattice["input_radius"].get<double>(), lattice["input_length"].get<double>());
+                       lattice["input_radius"].get<double>(), lattice["input_length"].get<double>(), any.n, any.m);
   }
   if (kind == "fullerene") {
     const long t = lattice["triangulation_number"].get<long>();
