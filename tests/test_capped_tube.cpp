@@ -41,6 +41,23 @@ std::vector<int> valence_counts(const TriMesh& m) {
   return out;
 }
 
+// A capped tube's triangulation: one closed genus-0 surface facing out, 12 vertices of valence 5 (the caps'
+// pentagons) and the rest of valence 6, every edge in [0.8, 1.2] times the lattice edge (so that `carbonmesh build`
+// takes it as it is).
+void expect_capped_tube(const CappedTube& tube, double edge) {
+  const Topology top = topology(tube.mesh);
+  EXPECT_EQ(top.boundary_loops, 0);
+  EXPECT_EQ(top.genus, 0);
+  EXPECT_EQ(top.components, 1);
+  const std::vector<int> valences = valence_counts(tube.mesh);
+  EXPECT_EQ(valences[5], 12);
+  EXPECT_EQ(valences[6], static_cast<int>(tube.mesh.n_vertices()) - 12);
+  EXPECT_GT(volume(tube.mesh), 0);
+  const EdgeStats e = edge_stats(tube.mesh);
+  EXPECT_GE(e.min, 0.8 * edge);
+  EXPECT_LE(e.max, 1.2 * edge);
+}
+
 }  // namespace
 
 // The icosahedron's net, each face the lattice triangle 0, w, w turned by 60 degrees, folds into the Goldberg-Coxeter
@@ -95,17 +112,7 @@ TEST(CappedTube, HasTwelvePentagonsAndHexagonsOnly) {
       SCOPED_TRACE(testing::Message() << "(" << n << ", " << m << ") length " << length);
       const double edge = 2.0;
       const CappedTube tube = make_capped_tube({n, m, length, edge});
-      const Topology top = topology(tube.mesh);
-      EXPECT_EQ(top.boundary_loops, 0);
-      EXPECT_EQ(top.genus, 0);
-      EXPECT_EQ(top.components, 1);
-      const std::vector<int> valences = valence_counts(tube.mesh);
-      EXPECT_EQ(valences[5], 12);
-      EXPECT_EQ(valences[6], static_cast<int>(tube.mesh.n_vertices()) - 12);
-      EXPECT_GT(volume(tube.mesh), 0);
-      const EdgeStats e = edge_stats(tube.mesh);
-      EXPECT_GE(e.min, 0.8 * edge);
-      EXPECT_LE(e.max, 1.2 * edge);
+      expect_capped_tube(tube, edge);
       EXPECT_NEAR(tube.radius, edge * std::sqrt(n * n + n * m + m * m) / (2 * kPi), 1e-12);
       // The straight part is whole periods, within half a period of the length asked.
       EXPECT_NEAR(tube.straight_length, tube.periods * tube.period, 1e-9);
@@ -203,17 +210,7 @@ TEST(CappedTube, RingCapsCloseAnyOtherTube) {
       const double edge = 2.0;
       const CappedTube tube = make_capped_tube({n, m, length, edge});
       EXPECT_TRUE(tube.ring_caps);
-      const Topology top = topology(tube.mesh);
-      EXPECT_EQ(top.boundary_loops, 0);
-      EXPECT_EQ(top.genus, 0);
-      EXPECT_EQ(top.components, 1);
-      const std::vector<int> valences = valence_counts(tube.mesh);
-      EXPECT_EQ(valences[5], 12);
-      EXPECT_EQ(valences[6], static_cast<int>(tube.mesh.n_vertices()) - 12);
-      EXPECT_GT(volume(tube.mesh), 0);
-      const EdgeStats e = edge_stats(tube.mesh);
-      EXPECT_GE(e.min, 0.8 * edge);
-      EXPECT_LE(e.max, 1.2 * edge);
+      expect_capped_tube(tube, edge);
       EXPECT_EQ(self_intersections(tube.mesh).pairs, 0);
       // The triangles' area is that of the capsule the points lie on.
       const double area = static_cast<double>(tube.mesh.n_faces()) * std::sqrt(3.0) / 4 * edge * edge;

@@ -73,6 +73,20 @@ double capped_tube_radius(int n, int m, double edge) {
   return edge * std::sqrt(nn * nn + nn * mm + mm * mm) / (2 * kPi);
 }
 
+TriMesh capsule_mesh(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles, long expected,
+                     int n, int m, double radius, double half) {
+  TriMesh mesh;
+  for (const auto& p : points) mesh.add_vertex(p);
+  if (!add_faces(mesh, triangles)) throw std::logic_error("capped tube: a triangle that does not fit its neighbours");
+  if (static_cast<long>(mesh.n_faces()) != expected || static_cast<long>(mesh.n_vertices()) != expected / 2 + 2)
+    throw std::logic_error(fmt::format("capped tube ({}, {}): {} vertices and {} triangles, not {} and {}", n, m,
+                                       mesh.n_vertices(), mesh.n_faces(), expected / 2 + 2, expected));
+  // The sphere's springs, each step back onto the capsule.
+  icosahedral::even_out(mesh, [&](const Vec3& p) { return icosahedral::onto_capsule(p, radius, half); });
+  mesh.update_normals();
+  return mesh;
+}
+
 bool icosahedral_caps(int n, int m) { return n % 5 == 0 && m % 5 == 0; }
 
 double capped_tube_period(int n, int m, double edge) {
@@ -184,19 +198,9 @@ CappedTube make_capped_tube(const CappedTubeShape& shape) {
     if (!found) throw std::logic_error("capped tube: a belt point outside the sphere's antiprism");
   }
 
-  TriMesh mesh;
-  for (const auto& p : points) mesh.add_vertex(p);
-  if (!add_faces(mesh, folded.triangles)) throw std::logic_error("capped tube: a triangle that does not fit its neighbours");
-  const long expected = 20 * l.T + j * l.period_triangles;
-  if (static_cast<long>(mesh.n_faces()) != expected || static_cast<long>(mesh.n_vertices()) != expected / 2 + 2)
-    throw std::logic_error(fmt::format("capped tube ({}, {}): {} vertices and {} triangles, not {} and {}", shape.n,
-                                       shape.m, mesh.n_vertices(), mesh.n_faces(), expected / 2 + 2, expected));
-
-  // The sphere's springs, each step back onto the capsule.
-  icosahedral::even_out(mesh, [&](const Vec3& p) { return icosahedral::onto_capsule(p, r, half_straight); });
-  mesh.update_normals();
   CappedTube out;
-  out.mesh = std::move(mesh);
+  out.mesh = capsule_mesh(points, folded.triangles, 20 * l.T + j * l.period_triangles, shape.n, shape.m, r,
+                          half_straight);
   out.periods = static_cast<int>(j);
   out.radius = r;
   out.straight_length = 2 * half_straight;

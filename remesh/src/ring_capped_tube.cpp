@@ -447,16 +447,8 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
     }
   }
 
-  TriMesh mesh;
-  for (const auto& p : points) mesh.add_vertex(p);
-  if (!add_faces(mesh, folded.triangles)) throw std::logic_error("capped tube: a triangle that does not fit its neighbours");
-  if (static_cast<long>(mesh.n_faces()) != expected || static_cast<long>(mesh.n_vertices()) != expected / 2 + 2)
-    throw std::logic_error(fmt::format("capped tube ({}, {}): {} vertices and {} triangles, not {} and {}", shape.n,
-                                       shape.m, mesh.n_vertices(), mesh.n_faces(), expected / 2 + 2, expected));
-  icosahedral::even_out(mesh, [&](const Vec3& p) { return icosahedral::onto_capsule(p, radius, half); });
-  mesh.update_normals();
   CappedTube out;
-  out.mesh = std::move(mesh);
+  out.mesh = capsule_mesh(points, folded.triangles, expected, shape.n, shape.m, radius, half);
   out.periods = 0;
   out.ring_caps = true;
   out.radius = r;
