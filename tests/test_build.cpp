@@ -329,8 +329,8 @@ TEST(BuildCommand, LatticeFoldsASphereIntoAFullerene) {
 // A capsule (radius 5 A, straight part 20 A, turned and shifted): --lattice folds the lattice onto an icosahedron
 // lengthened along a five-fold axis, the capped tube nearest its radius, (10, 5) with C140's halves as caps: 12
 // pentagons and hexagons only, every atom three-bonded, the deck running with every atom keeping its neighbours.
-// --chirality 10,10 gives the armchair tube instead, --chirality 11,4 the chiral tube closed by ring caps (lattice
-// hexagons with a pentagon at each corner), its straight part the capsule's to 0.1 A; a tube too thin for the capsule,
+// --chirality 10,10 gives the armchair tube instead, --chirality 11,4 the chiral tube closed by apex caps (five lattice
+// triangles around a pentagon, five more on their rim), its straight part the capsule's to 0.1 A; a tube too thin for the capsule,
 // a flattened capsule and a sheet's --lattice-turn are refused.
 TEST(BuildCommand, LatticeFoldsACapsuleIntoACappedTube) {
   const fs::path dir = temp_dir("lattice_capsule");
@@ -350,10 +350,10 @@ TEST(BuildCommand, LatticeFoldsACapsuleIntoACappedTube) {
     EXPECT_NEAR(s["lattice"]["radius"].get<double>(), a * std::sqrt(n * n + n * m + m * m) / (2 * pi), 1e-9);
     EXPECT_NEAR(s["lattice"]["input_radius"].get<double>(), 5.0, 1e-6);
     EXPECT_NEAR(s["lattice"]["input_length"].get<double>(), 20.0, 1e-6);
-    const bool ring = n % 5 != 0 || m % 5 != 0;
-    EXPECT_EQ(s["lattice"]["caps"], ring ? "hexagon_ring" : "icosahedral");
+    const bool apex = n % 5 != 0 || m % 5 != 0;
+    EXPECT_EQ(s["lattice"]["caps"], apex ? "apex" : "icosahedral");
     EXPECT_LE(std::abs(s["lattice"]["length"].get<double>() - 20.0),
-              ring ? 0.1 : 0.5 * s["lattice"]["period"].get<double>());
+              apex ? 0.1 : 0.5 * s["lattice"]["period"].get<double>());
     const long atoms = s["atoms"].get<long>();
     ASSERT_EQ(s["rings_by_size"].size(), 2u);
     EXPECT_EQ(s["rings_by_size"]["5"], 12);

@@ -88,7 +88,7 @@ TEST(CliShape, GeodesicIndicesWriteTheDualOfC140) {
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
-// The capped (10, 0) tube (icosahedral caps) and the capped (9, 0) and (6, 6) tubes (ring caps): 12 vertices of
+// The capped (10, 0) tube (icosahedral caps) and the capped (9, 0) and (6, 6) tubes (apex caps): 12 vertices of
 // valence 5 and the rest of valence 6, which `build` takes as it is (every edge inside its interval, the mean at the
 // lattice edge): 12 pentagons in the carbon net, hexagons otherwise.
 TEST(CliShape, CappedTubeWritesTheDualOfACappedNanotube) {

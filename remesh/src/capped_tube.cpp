@@ -21,7 +21,7 @@
 #include "add_faces.hpp"
 #include "icosahedral.hpp"
 #include "lattice_net.hpp"
-#include "ring_capped_tube.hpp"
+#include "apex_capped_tube.hpp"
 
 namespace carbonmesh {
 
@@ -87,6 +87,22 @@ TriMesh capsule_mesh(const std::vector<Vec3>& points, const std::vector<std::arr
   return mesh;
 }
 
+const char* cap_kind_name(CapKind kind) {
+  switch (kind) {
+    case CapKind::icosahedral: return "icosahedral";
+    case CapKind::apex: return "apex";
+  }
+  return "";
+}
+
+const char* cap_kind_description(CapKind kind) {
+  switch (kind) {
+    case CapKind::icosahedral: return "the halves of an icosahedral fullerene C_20T";
+    case CapKind::apex: return "apex caps (five lattice triangles around a pentagon, five more pentagons on their rim)";
+  }
+  return "";
+}
+
 bool icosahedral_caps(int n, int m) { return n % 5 == 0 && m % 5 == 0; }
 
 double capped_tube_period(int n, int m, double edge) {
@@ -101,7 +117,7 @@ CappedTube make_capped_tube(const CappedTubeShape& shape) {
   if (!(shape.edge > 0) || !std::isfinite(shape.edge)) throw InputError("capped tube: the edge must be a positive number");
   if (!(shape.length >= 0) || !std::isfinite(shape.length))
     throw InputError("capped tube: the length must be a number >= 0");
-  if (!icosahedral_caps(shape.n, shape.m)) return ring_cap::make_ring_capped_tube(shape);
+  if (!icosahedral_caps(shape.n, shape.m)) return apex_cap::make_apex_capped_tube(shape);
   const Layout l = layout(shape.n, shape.m);
   const double a = shape.edge, r = capped_tube_radius(shape.n, shape.m, a);
   const double period = capped_tube_period(shape.n, shape.m, a);

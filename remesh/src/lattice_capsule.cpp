@@ -132,7 +132,7 @@ LatticeCappedTube lattice_capped_tube(const TriMesh& input, const Capsule& capsu
   LatticeCappedTube out;
   out.chirality = chirality;
   out.periods = tube.periods;
-  out.ring_caps = tube.ring_caps;
+  out.caps = tube.caps;
   out.radius = tube.radius;
   out.length = tube.straight_length;
   // Which side the input's faces face: the sign of its volume about the capsule's centre.

@@ -241,7 +241,7 @@ int run_build(BuildOptions& o) {
       spdlog::info("{}: the surface is a capsule: --lattice folds a triangular lattice onto an icosahedron lengthened "
                    "along a five-fold axis instead of remeshing it (a capped nanotube, its caps the halves of an "
                    "icosahedral fullerene: 12 pentagons, no heptagons; --chirality N,M sets its indices, any but the "
-                   "thinnest: N and M not both multiples of 5 give caps with six pentagons on a ring)",
+                   "thinnest: N and M not both multiples of 5 give apex caps, a pentagon at the tip and five around it)",
                    source);
     try {
       remeshed = remesh(mesh, o.remesh);
@@ -476,7 +476,7 @@ void add_build_command(CLI::App& app, Action& action) {
                   "radius sqrt(3) b sqrt(N^2 + NM + M^2) / (2 pi)); on a sphere: the fullerene's Goldberg-Coxeter "
                   "indices N,M (C_20T, T = N^2 + NM + M^2; 1,1 is C60; N,0 and N,N symmetry Ih, others chiral); on a "
                   "capsule: the capped tube's chiral indices N,M (both multiples of 5: its caps the halves of C_20T, T "
-                  "= (N^2 + NM + M^2) / 25; otherwise each cap a lattice hexagon with a pentagon at each corner); "
+                  "= (N^2 + NM + M^2) / 25; otherwise apex caps: a pentagon at the tip, five around it); "
                   "default: the indices nearest the input's radius (on a capsule: of the multiples of 5)")
       ->delimiter(',')
       ->expected(2)

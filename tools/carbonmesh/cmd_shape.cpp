@@ -51,8 +51,8 @@ void add_shape_command(CLI::App& app, Action& action) {
   cmd->add_option("--tube-radius", opt->helix.tube_radius, "helix: tube radius (mesh units)")->capture_default_str();
   cmd->add_option("--chirality", opt->chirality,
                   "capped-tube: chiral indices N,M of the tube (both multiples of 5: its caps are the halves of the "
-                  "icosahedral fullerene C_20T, T = (N^2 + NM + M^2) / 25, 5,5 from C60; otherwise each cap is a "
-                  "lattice hexagon with a pentagon at each corner; default 5,5)")
+                  "icosahedral fullerene C_20T, T = (N^2 + NM + M^2) / 25, 5,5 from C60; otherwise each cap is "
+                  "five lattice triangles around a pentagon with five more on their rim; default 5,5)")
       ->expected(2)
       ->delimiter(',');
   cmd->add_option("--length", opt->capsule.length,
@@ -87,11 +87,11 @@ void add_shape_command(CLI::App& app, Action& action) {
                            "(2 pi), from --chirality and --edge)");
         const CappedTube tube = make_capped_tube(
             {opt->chirality[0], opt->chirality[1], opt->capsule.length, opt->edge > 0 ? opt->edge : CappedTubeShape{}.edge});
-        if (tube.ring_caps)
-          spdlog::info("capped tube ({}, {}): radius {:.4f}, straight part {:.4f} (period {:.4f}), each cap a lattice "
-                       "hexagon with a pentagon at each corner, its dual C{} with 12 pentagons",
+        if (tube.caps != CapKind::icosahedral)
+          spdlog::info("capped tube ({}, {}): radius {:.4f}, straight part {:.4f} (period {:.4f}), closed by {}, its "
+                       "dual C{} with 12 pentagons",
                        opt->chirality[0], opt->chirality[1], tube.radius, tube.straight_length, tube.period,
-                       tube.mesh.n_faces());
+                       cap_kind_description(tube.caps), tube.mesh.n_faces());
         else
           spdlog::info("capped tube ({}, {}): radius {:.4f}, straight part {:.4f} ({} periods of {:.4f} added to "
                        "C{}), its dual C{} with 12 pentagons",

@@ -294,7 +294,7 @@ inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& sur
       options.chirality ? std::array<int, 2>{options.chirality->n, options.chirality->m} : nearest;
   naming_input(source, [&] { check_capped_tube(chirality[0], chirality[1]); });
   if (options.chirality) {
-    const Chirality any = nearest_chirality(capsule.radius, edge);  // any indices: ring caps where not (5h, 5k)
+    const Chirality any = nearest_chirality(capsule.radius, edge);  // any indices: apex caps where not (5h, 5k)
     check_asked_radius(source, "capped tube", chirality, {any.n, any.m},
                        capped_tube_radius(chirality[0], chirality[1], edge) / capsule.radius, capsule.radius);
   }
@@ -303,18 +303,18 @@ inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& sur
   surface = mesh;
   const double angle = chiral_angle_deg({chirality[0], chirality[1]});
   const double period = capped_tube_period(chirality[0], chirality[1], edge);
-  const bool ring = !icosahedral_caps(chirality[0], chirality[1]);
-  const int h = ring ? 0 : chirality[0] / 5, k = ring ? 0 : chirality[1] / 5;
-  const long t = ring ? 0 : triangulation_number(h, k);
+  const bool apex = tube.caps == CapKind::apex;
+  const int h = apex ? 0 : chirality[0] / 5, k = apex ? 0 : chirality[1] / 5;
+  const long t = apex ? 0 : triangulation_number(h, k);
   const std::string tube_text =
       fmt::format("the ({}, {}) tube ({}, chiral angle {:.2f} degrees) of radius {:.4f} A{} and straight part {:.4f} A",
                   chirality[0], chirality[1], edge_kind(std::round(angle * 1e9) / 1e9), angle, tube.radius,
                   options.chirality ? "" : " (the nearest a capped tube with icosahedral caps can have)", tube.length);
-  if (ring)
+  if (apex)
     spdlog::info("{}: a capsule of radius {:.4f} A and straight part {:.4f} A: the triangular lattice of edge {:.4f} A "
-                 "folded onto a tube closed by two lattice hexagons with a pentagon at each corner, {} (period {:.4f} "
-                 "A): {} vertices, {} triangles",
-                 source, capsule.radius, capsule.length, edge, tube_text, period, mesh.n_vertices(), mesh.n_faces());
+                 "folded onto a tube closed by {}, {} (period {:.4f} A): {} vertices, {} triangles",
+                 source, capsule.radius, capsule.length, edge, cap_kind_description(tube.caps), tube_text, period,
+                 mesh.n_vertices(), mesh.n_faces());
   else
     spdlog::info("{}: a capsule of radius {:.4f} A and straight part {:.4f} A: the triangular lattice of edge {:.4f} A "
                  "folded onto an icosahedron lengthened along a five-fold axis, {} ({} periods of {:.4f} A) closed by "
@@ -327,10 +327,10 @@ inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& sur
           {"edge", edge},
           {"chirality", {chirality[0], chirality[1]}},
           {"chiral_angle_deg", angle},
-          {"caps", ring ? "hexagon_ring" : "icosahedral"},
-          {"cap_indices", ring ? nlohmann::json() : nlohmann::json({h, k})},
-          {"triangulation_number", ring ? nlohmann::json() : nlohmann::json(t)},
-          {"periods", ring ? nlohmann::json() : nlohmann::json(tube.periods)},
+          {"caps", cap_kind_name(tube.caps)},
+          {"cap_indices", apex ? nlohmann::json() : nlohmann::json({h, k})},
+          {"triangulation_number", apex ? nlohmann::json() : nlohmann::json(t)},
+          {"periods", apex ? nlohmann::json() : nlohmann::json(tube.periods)},
           {"period", period},
           {"radius", tube.radius},
           {"input_radius", capsule.radius},
@@ -359,7 +359,7 @@ inline std::string lattice_shortfall(const nlohmann::json& lattice, double perce
     const Chirality any = nearest_chirality(lattice["input_radius"].get<double>(), lattice["edge"].get<double>());
     return fmt::format("a capped tube has 20 T atoms and whole periods of the tube, and the ({}, {}) tube (caps from "
                        "C{}) has a radius of {:.4f} A and a straight part of {:.4f} A where the input has {:.4f} A and "
-                       "{:.4f} A; --chirality {},{} (the indices nearest that radius) gives ring caps and the straight "
+                       "{:.4f} A; --chirality {},{} (the indices nearest that radius) gives apex caps and the straight "
                        "part within half a lattice row",
                        lattice["chirality"][0].get<int>(), lattice["chirality"][1].get<int>(), 20 * t,
                        lattice["radius"].get<double>(), lattice["length"].get<double>(),

@@ -2,12 +2,13 @@
 // A capsule (a cylinder closed by two hemispheres) replaced by a capped nanotube (`carbonmesh build --lattice`): the
 // triangulation of make_capped_tube, the lattice folded onto the icosahedron lengthened along a five-fold axis, whose
 // dual is the tube (5h, 5k) closed by the two halves of the icosahedral fullerene C_20T, or for other indices onto a
-// tube closed by two lattice hexagons: 12 pentagons, hexagons otherwise. The remesher cannot give that: a capsule
+// tube closed by apex caps: 12 pentagons, hexagons otherwise. The remesher cannot give that: a capsule
 // remeshed keeps pentagon-heptagon pairs.
 #include <array>
 #include <limits>
 
 #include "carbonmesh/remesh/mesh.hpp"
+#include "carbonmesh/remesh/shapes.hpp"
 
 namespace carbonmesh {
 
@@ -31,8 +32,8 @@ std::array<int, 2> nearest_capped_chirality(double radius, double edge);
 struct LatticeCappedTube {
   TriMesh mesh;          // the capped tube on the capsule's axis, centred on its centre
   std::array<int, 2> chirality{};
-  int periods = 0;       // tube periods between the caps (icosahedral caps; 0 with ring caps)
-  bool ring_caps = false;  // caps that are lattice hexagons with a pentagon at each corner (make_capped_tube)
+  int periods = 0;       // tube periods between the caps (icosahedral caps; 0 with apex caps)
+  CapKind caps = CapKind::icosahedral;
   double radius = 0;     // the tube's radius (the capsule's is capsule.radius)
   double length = 0;     // the straight part the points lie on (the capsule's is capsule.length)
 };

@@ -53,19 +53,26 @@ TriMesh make_goldberg_coxeter_sphere(const GoldbergCoxeterShape& shape);
 // faces for j periods of P faces. The points lie on the capsule of the tube's radius whose straight part is the j
 // periods: the caps are the Goldberg-Coxeter sphere's halves at that radius (with no period added, the whole sphere),
 // the periods the lattice rolled onto the cylinder, evened out by springs as on the sphere. Its dual is the capped
-// nanotube. Any other (n, m) but the thinnest (n^2 + nm + m^2 >= 25) gets ring caps (ring_capped_tube.cpp): each cap
-// a lattice hexagon with one of its six pentagons at each corner, the tube as many lattice rows long as give the
-// capsule of the length asked its area (the straight part within half a row of it); the points lie on that capsule.
+// nanotube. Any other (n, m) but the thinnest (n^2 + nm + m^2 >= 25) gets apex caps (apex_capped_tube.cpp): each cap
+// five lattice triangles around a pentagon, the apex, with the other five pentagons on their rim, as the icosahedral
+// caps have them; the tube is as many lattice rows long as give the capsule of the length asked its area (the
+// straight part within half a row of it), and the points lie on that capsule.
+enum class CapKind {
+  icosahedral,  // the halves of C_20T ((5h, 5k))
+  apex,         // any other (n, m): a pentagon at the apex of five lattice triangles, five on their rim
+};
+const char* cap_kind_name(CapKind kind);         // "icosahedral", "apex"
+const char* cap_kind_description(CapKind kind);  // e.g. "the halves of C_20T"
 struct CappedTubeShape {
   int n = 5, m = 5;      // chiral indices
   double length = 0;     // wanted length of the straight part (mesh units): the nearest whole number of periods
-                         // (icosahedral caps) or lattice rows (ring caps)
+                         // (icosahedral caps) or lattice rows (apex caps)
   double edge = 2.4595121467478056;  // lattice edge (mesh units): sqrt(3) times a C-C bond of 1.42 A
 };
 struct CappedTube {
   TriMesh mesh;
-  int periods = 0;             // tube periods added to C_20T (0 with ring caps)
-  bool ring_caps = false;      // the caps are lattice hexagons with a pentagon at each corner (not (5h, 5k))
+  int periods = 0;             // tube periods added to C_20T (0 with apex caps)
+  CapKind caps = CapKind::icosahedral;
   double radius = 0;           // the tube's: edge |n e1 + m e2| / (2 pi)
   double straight_length = 0;  // of the capsule the points lie on (mesh units; icosahedral caps: periods * period)
   double period = 0;           // the tube's translation period (mesh units)
@@ -73,11 +80,11 @@ struct CappedTube {
 // Throws InputError unless n, m >= 0, not both 0, and for multiples of 5 T = (n^2 + nm + m^2) / 25 is at most
 // kMaxTriangulationNumber (for others n^2 + nm + m^2 at most 25 times that).
 void check_capped_tube(int n, int m);
-// Whether the tube (n, m) gets the icosahedral caps (n and m multiples of 5) rather than ring caps.
+// Whether the tube (n, m) gets the icosahedral caps (n and m multiples of 5) rather than apex caps.
 bool icosahedral_caps(int n, int m);
 double capped_tube_radius(int n, int m, double edge);
 double capped_tube_period(int n, int m, double edge);
-// Throws InputError for bad indices (check_capped_tube), a tube too thin for a ring cap, an edge that is not
+// Throws InputError for bad indices (check_capped_tube), a tube too thin for a cap, an edge that is not
 // positive, a negative length or one that needs more than 20 kMaxTriangulationNumber faces.
 CappedTube make_capped_tube(const CappedTubeShape& shape);
 

@@ -1,15 +1,16 @@
-// Capped nanotubes of any chirality with ring caps (ring_capped_tube.hpp).
+// Capped nanotubes of any chirality with apex caps (apex_capped_tube.hpp).
 //
 // Unrolled, the tube is the strip of the lattice between two polylines, each repeating with the chiral vector C. The
-// upper one P_0, P_1 = P_0 + f_0, .., P_6 = P_0 + C runs through the upper cap's six pentagons: at each the lattice
-// below it keeps its angle, the cap above it has 60 degrees less (300 degrees around a pentagon). Going round the cap,
-// each side therefore turns 60 degrees more than the rim does: the cap is the flat lattice hexagon with sides f_i
-// turned by i * 60 degrees, closed when their sum is 0. The lower polyline Q_j = T - P_-j is the upper one turned by
-// 180 degrees about T / 2, with the lower cap the upper one's image. The net folded (lattice_net) is then 4 triangles
-// of each hexagon and the 12 triangles of the belt between the polylines: a polyhedron with 12 corners of 300
-// degrees, whose folded lattice has 12 vertices of valence 5 (the dual's pentagons) and valence 6 otherwise.
-// Moving T by the tube's translation vector p lengthens the belt by one period.
-#include "ring_capped_tube.hpp"
+// upper one P_0, P_1 = P_0 + f_0, .., P_5 = P_0 + C runs through five of the upper cap's pentagons: at each the
+// lattice below it keeps its angle, the cap above it has 60 degrees less (300 degrees around a pentagon). Going round
+// the cap, each side therefore turns 60 degrees more than the rim does: side i is f_i turned by i * 60 degrees. The
+// five sides are the far sides of five lattice triangles around the sixth pentagon, the apex, whose 300 degrees close
+// them for any steps (the icosahedral caps are the case f_i = C / 5). The lower polyline Q_j = T - P_-j is the upper
+// one turned by 180 degrees about T / 2, with the lower cap the upper one's image. The net folded (lattice_net) is
+// each cap's 5 triangles and the 10 triangles of the belt between the polylines: a polyhedron with 12 corners of 300
+// degrees (the icosahedron's combinatorics), whose folded lattice has 12 vertices of valence 5 (the dual's pentagons)
+// and valence 6 otherwise.
+#include "apex_capped_tube.hpp"
 
 #include <fmt/format.h>
 
@@ -23,22 +24,20 @@
 #include <vector>
 
 #include "carbonmesh/remesh/error.hpp"
-#include "add_faces.hpp"
-#include "icosahedral.hpp"
 
-namespace carbonmesh::ring_cap {
+namespace carbonmesh::apex_cap {
 
 namespace {
 
 using lattice_net::det;
-using lattice_net::squared_length;
 using lattice_net::LatticePoint;
 using lattice_net::NetFace;
+using lattice_net::squared_length;
 using lattice_net::turned;
 using lattice_net::operator+;
 using lattice_net::operator*;
 using lattice_net::operator-;
-using Steps = std::array<LatticePoint, 6>;
+using Steps = std::array<LatticePoint, 5>;  // f_0 .. f_4
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -49,14 +48,21 @@ long dot2(LatticePoint a, LatticePoint b) { return 2 * a[0] * b[0] + 2 * a[1] * 
 // A lattice point in the plane, in unit edges (e1 along x).
 std::array<double, 2> cartesian(double i, double j) { return {i + 0.5 * j, 0.5 * std::sqrt(3.0) * j}; }
 
-// The polyline through the upper cap's pentagons, P_k for any k (P_k+6 = P_k + C).
+double signed_turn(LatticePoint a, LatticePoint b) {  // the angle from a to b, in (-pi, pi]
+  const auto x = cartesian(static_cast<double>(a[0]), static_cast<double>(a[1]));
+  const auto y = cartesian(static_cast<double>(b[0]), static_cast<double>(b[1]));
+  return std::atan2(x[0] * y[1] - x[1] * y[0], x[0] * y[0] + x[1] * y[1]);
+}
+
+// The polyline through five of the upper cap's pentagons, P_i for any i (P_i+5 = P_i + C).
 struct Rim {
   Steps steps{};
   LatticePoint chiral{};
-  std::array<LatticePoint, 7> at{};  // P_0 = 0 .. P_6 = C
-  LatticePoint point(long k) const {
-    const long q = static_cast<long>(std::floor(static_cast<double>(k) / 6.0));
-    return at[static_cast<std::size_t>(k - 6 * q)] + q * chiral;
+  std::array<LatticePoint, 6> at{};  // P_0 = 0 .. P_5 = C
+  long k() const { return 5; }
+  LatticePoint point(long i) const {
+    const long q = static_cast<long>(std::floor(static_cast<double>(i) / static_cast<double>(k())));
+    return at[static_cast<std::size_t>(i - k() * q)] + q * chiral;
   }
 };
 
@@ -65,78 +71,56 @@ Rim make_rim(const Steps& f, LatticePoint chiral) {
   r.steps = f;
   r.chiral = chiral;
   r.at[0] = {0, 0};
-  for (std::size_t i = 0; i < 6; ++i) r.at[i + 1] = r.at[i] + f[i];
+  for (std::size_t i = 0; i < 5; ++i) r.at[i + 1] = r.at[i] + f[i];
   return r;
 }
 
-// The cap hexagon's corners: p_0 = 0, p_i+1 = p_i + f_i turned by i * 60 degrees.
-std::array<LatticePoint, 6> hexagon(const Steps& f) {
+// The cap above the rim, in one lattice chart with the apex at 0: its 5 triangles (P_i, P_i+1, apex) over the ring's
+// corners 0 .. 4 and the apex 5, and its border, side i over the rim's step i.
+struct Cap {
+  std::vector<std::array<int, 3>> faces;
+  std::vector<std::array<LatticePoint, 3>> at;
+  std::vector<std::array<LatticePoint, 2>> sides;
+  long triangles = 0;
+};
+
+// The cap of the steps f: side i is f_i turned by i * 60 degrees, the far side of the triangle (P_i, P_i+1, apex). The
+// apex's side to P_0, a_0, comes back after the 5 sides turned by -60 degrees, so a_0 is their sum turned by 120
+// degrees. The triangles must be counter-clockwise with 300 degrees at the apex, and each ring corner must have 300
+// degrees with the strip's angle below it. None if the steps give no such cap.
+std::optional<Cap> make_cap(const Steps& f) {
+  Cap cap;
   std::array<LatticePoint, 6> p{};
-  for (int i = 0; i + 1 < 6; ++i)
-    p[static_cast<std::size_t>(i + 1)] = p[static_cast<std::size_t>(i)] + turned(f[static_cast<std::size_t>(i)], i);
-  return p;
-}
-
-bool segments_cross(LatticePoint a, LatticePoint b, LatticePoint c, LatticePoint d) {
-  const auto side = [](LatticePoint o, LatticePoint x, LatticePoint y) {
-    const long s = det(x - o, y - o);
-    return (s > 0) - (s < 0);
-  };
-  const int s1 = side(a, b, c), s2 = side(a, b, d), s3 = side(c, d, a), s4 = side(c, d, b);
-  if (s1 * s2 < 0 && s3 * s4 < 0) return true;
-  const auto on = [](LatticePoint o, LatticePoint x, LatticePoint y) {  // y on the segment o-x (collinear)
-    return std::min(o[0], x[0]) <= y[0] && y[0] <= std::max(o[0], x[0]) && std::min(o[1], x[1]) <= y[1] &&
-           y[1] <= std::max(o[1], x[1]);
-  };
-  return (s1 == 0 && on(a, b, c)) || (s2 == 0 && on(a, b, d)) || (s3 == 0 && on(c, d, a)) || (s4 == 0 && on(c, d, b));
-}
-
-// The hexagon simple and counter-clockwise, each corner turning 60 degrees more than the rim there (not 300 less).
-bool simple_hexagon(const Steps& f) {
-  const auto p = hexagon(f);
-  long area = 0;
-  for (std::size_t i = 0; i < 6; ++i) area += det(p[i], p[(i + 1) % 6]);
-  if (area <= 0) return false;
-  for (std::size_t i = 0; i < 6; ++i)
-    for (std::size_t j = i + 2; j < 6; ++j) {
-      if (i == 0 && j == 5) continue;
-      if (segments_cross(p[i], p[(i + 1) % 6], p[j], p[(j + 1) % 6])) return false;
-    }
-  const auto angle = [](LatticePoint a, LatticePoint b) {  // signed turn from a to b
-    const auto x = cartesian(static_cast<double>(a[0]), static_cast<double>(a[1]));
-    const auto y = cartesian(static_cast<double>(b[0]), static_cast<double>(b[1]));
-    return std::atan2(x[0] * y[1] - x[1] * y[0], x[0] * y[0] + x[1] * y[1]);
-  };
-  for (int i = 0; i < 6; ++i) {
-    const int k = (i + 5) % 6;
-    const LatticePoint rim_in = f[static_cast<std::size_t>(k)], rim_out = f[static_cast<std::size_t>(i)];
-    const LatticePoint side_in = turned(rim_in, k), side_out = turned(rim_out, i);
-    if (std::abs(angle(side_in, side_out) - angle(rim_in, rim_out) - kPi / 3) > 1e-9) return false;
+  LatticePoint sum{0, 0};
+  for (std::size_t i = 0; i < 5; ++i) sum = sum + turned(f[i], static_cast<int>(i));
+  p[0] = turned(sum, 2);
+  for (std::size_t i = 0; i < 5; ++i) p[i + 1] = p[i] + turned(f[i], static_cast<int>(i));
+  if (p[5] != turned(p[0], -1)) throw std::logic_error("apex cap: the sides do not close");
+  double around = 0;
+  for (std::size_t i = 0; i < 5; ++i) {
+    if (det(p[i], p[i + 1]) <= 0) return std::nullopt;
+    around += signed_turn(p[i], p[i + 1]);
+    cap.faces.push_back({static_cast<int>(i), static_cast<int>((i + 1) % 5), 5});
+    cap.at.push_back({p[i], p[i + 1], LatticePoint{0, 0}});
+    cap.sides.push_back({p[i], p[i + 1]});
+    cap.triangles += det(p[i], p[i + 1]);
   }
-  return true;
-}
-
-// The hexagon cut into 4 triangles: the fan from the corner whose smallest triangle is largest.
-std::vector<std::array<int, 3>> fan(const std::array<LatticePoint, 6>& p) {
-  long best = 0;
-  int from = -1;
-  for (int k = 0; k < 6; ++k) {
-    long smallest = std::numeric_limits<long>::max();
-    for (int i = 1; i < 5; ++i) {
-      const LatticePoint a = p[static_cast<std::size_t>(k)], b = p[static_cast<std::size_t>((k + i) % 6)],
-                         c = p[static_cast<std::size_t>((k + i + 1) % 6)];
-      smallest = std::min(smallest, det(b - a, c - a));
+  if (std::abs(around - 5 * kPi / 3) > 1e-9) return std::nullopt;
+  std::array<double, 5> angle{};
+  for (std::size_t t = 0; t < 5; ++t)
+    for (std::size_t c = 0; c < 2; ++c) {
+      const LatticePoint o = cap.at[t][c], a = cap.at[t][(c + 1) % 3], b = cap.at[t][(c + 2) % 3];
+      angle[static_cast<std::size_t>(cap.faces[t][c])] += signed_turn(a - o, b - o);
     }
-    if (smallest > best) best = smallest, from = k;
+  for (std::size_t i = 0; i < 5; ++i) {
+    const double strip = kPi + signed_turn(f[(i + 4) % 5], f[i]);  // below the rim, between its two steps
+    if (std::abs(angle[i] + strip - 5 * kPi / 3) > 1e-9) return std::nullopt;
   }
-  std::vector<std::array<int, 3>> out;
-  if (from < 0) return out;
-  for (int i = 1; i < 5; ++i) out.push_back({from, (from + i) % 6, (from + i + 1) % 6});
-  return out;
+  return cap;
 }
 
 // The belt between P (upper) and Q_j = T - P_-j (lower): triangles (P_i, Q_j, P_i+1) and (Q_j, Q_j+1, P_i) in the
-// order of the points along C, from the rung P_0 - Q_j0 to the rung P_6 - Q_j0+6. Empty if a triangle is not
+// order of the points along C, from the rung P_0 - Q_j0 to the rung P_k - Q_j0+k. Empty if a triangle is not
 // counter-clockwise or the lower polyline is not wholly below the upper.
 struct BeltTriangle {
   std::array<bool, 3> lower{};   // a corner on Q (else on P)
@@ -148,9 +132,9 @@ std::vector<BeltTriangle> belt(const Rim& rim, LatticePoint t) {
   const LatticePoint c = rim.chiral;
   const auto q = [&](long j) { return t - rim.point(-j); };
   long top_low = std::numeric_limits<long>::max(), bottom_high = std::numeric_limits<long>::min();
-  for (long k = 0; k < 6; ++k) {
-    top_low = std::min(top_low, det(c, rim.point(k)));
-    bottom_high = std::max(bottom_high, det(c, q(k)));
+  for (long i = 0; i < rim.k(); ++i) {
+    top_low = std::min(top_low, det(c, rim.point(i)));
+    bottom_high = std::max(bottom_high, det(c, q(i)));
   }
   if (bottom_high >= top_low) return {};
   // Q_j0: the last lower point not ahead of P_0 along C.
@@ -159,8 +143,9 @@ std::vector<BeltTriangle> belt(const Rim& rim, LatticePoint t) {
   while (dot2(q(j0 + 1), c) <= 0) ++j0;
   std::vector<BeltTriangle> out;
   long i = 0, j = j0;
-  while (i < 6 || j < j0 + 6) {
-    const bool top = j == j0 + 6 || (i < 6 && dot2(rim.point(i + 1), c) < dot2(q(j + 1), c));
+  const long k = rim.k();
+  while (i < k || j < j0 + k) {
+    const bool top = j == j0 + k || (i < k && dot2(rim.point(i + 1), c) < dot2(q(j + 1), c));
     BeltTriangle b;
     if (top) {
       b = {{false, true, false}, {i, j, i + 1}, {rim.point(i), q(j), rim.point(i + 1)}};
@@ -210,7 +195,7 @@ std::optional<LatticePoint> rim_offset(const Rim& rim, double wanted) {
     down = {-a * t0, -a * s0};  // det(along, down) = -a (s0 along0 - t0 along1) = -a^2 = -1
   }
   long top_low = std::numeric_limits<long>::max();
-  for (long k = 0; k < 6; ++k) top_low = std::min(top_low, det(c, rim.point(k)));
+  for (long i = 0; i < rim.k(); ++i) top_low = std::min(top_low, det(c, rim.point(i)));
   // The lower rim (heights det(C, T) - those of the upper) is wholly below the upper for det(C, T) < 2 top_low.
   const long highest = floor_div(2 * top_low - 1, g);
   const long start = std::isfinite(wanted) ? std::min(highest, std::lround(wanted / static_cast<double>(g))) : highest;
@@ -235,26 +220,23 @@ std::optional<LatticePoint> rim_offset(const Rim& rim, double wanted) {
 
 }  // namespace
 
-std::optional<Steps> ring_cap_steps(int n, int m) {
+std::optional<std::array<LatticePoint, 5>> apex_cap_steps(int n, int m) {
   const LatticePoint c{n, m};
-  // Steps near C / 6: f with |6 f - C| <= 3 * 6 (in unit edges), nearest first.
+  // Steps near C / 5: f with |5 f - C| <= 15 (in unit edges), nearest first.
   std::vector<LatticePoint> near;
-  const long ci = static_cast<long>(std::floor(n / 6.0)), cj = static_cast<long>(std::floor(m / 6.0));
+  const long ci = static_cast<long>(std::floor(n / 5.0)), cj = static_cast<long>(std::floor(m / 5.0));
+  const auto cost = [&](LatticePoint x) { return squared_length(5 * x - c); };
   for (long i = ci - 4; i <= ci + 5; ++i)
-    for (long j = cj - 4; j <= cj + 5; ++j) {
-      const LatticePoint f{i, j};
-      if (squared_length(6 * f - c) <= 36 * 9) near.push_back(f);
-    }
+    for (long j = cj - 4; j <= cj + 5; ++j)
+      if (cost({i, j}) <= 225) near.push_back({i, j});
   std::sort(near.begin(), near.end(), [&](LatticePoint a, LatticePoint b) {
-    const long da = squared_length(6 * a - c), db = squared_length(6 * b - c);
+    const long da = cost(a), db = cost(b);
     return da != db ? da < db : a < b;
   });
+  // f_0 .. f_3 from `near` (each loop nearest first, left once its sum so far cannot beat the best), f_4 = C - the
+  // others.
   std::optional<Steps> best;
   long best_spread = std::numeric_limits<long>::max();
-  // f_0 .. f_3 from `near` (each loop nearest first, left once its sum so far cannot beat the best), f_4 and f_5 from
-  // the two conditions: f_4 + f_5 = A and w^4 f_4 + w^5 f_5 = B (w: the 60 degree turn) give f_5 = B - w^4 A, as
-  // w^5 - w^4 = 1.
-  const auto cost = [&](LatticePoint x) { return squared_length(6 * x - c); };
   Steps f{};
   for (const auto& f0 : near) {
     const long s0 = cost(f0);
@@ -272,17 +254,12 @@ std::optional<Steps> ring_cap_steps(int n, int m) {
           const long s3 = s2 + cost(f3);
           if (s3 >= best_spread) break;
           f[3] = f3;
-          const LatticePoint sum = f[0] + f[1] + f[2] + f[3];
-          const LatticePoint turned_sum = f[0] + turned(f[1], 1) + turned(f[2], 2) + turned(f[3], 3);
-          const LatticePoint A = c - sum, B = LatticePoint{0, 0} - turned_sum;
-          f[5] = B - turned(A, 4);
-          f[4] = A - f[5];
-          const long s = s3 + cost(f[4]) + cost(f[5]);
+          f[4] = c - (f[0] + f[1] + f[2] + f[3]);
+          const long s = s3 + cost(f[4]);
           if (s >= best_spread) continue;
           bool forward = true;
           for (const auto& x : f) forward = forward && dot2(x, c) > 0;
-          if (!forward || !simple_hexagon(f) || fan(hexagon(f)).empty()) continue;
-          if (!rim_offset(make_rim(f, c), kInfinity)) continue;
+          if (!forward || !make_cap(f) || !rim_offset(make_rim(f, c), kInfinity)) continue;
           best_spread = s;
           best = f;
         }
@@ -292,26 +269,22 @@ std::optional<Steps> ring_cap_steps(int n, int m) {
   return best;
 }
 
-CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
-  const auto steps = ring_cap_steps(shape.n, shape.m);
+CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
+  const auto steps = apex_cap_steps(shape.n, shape.m);
   if (!steps)
-    throw InputError(fmt::format("capped tube ({}, {}): no cap with its six pentagons on a ring fits a tube this thin",
+    throw InputError(fmt::format("capped tube ({}, {}): no cap of six pentagons fits a tube this thin (n^2 + nm + m^2 "
+                                 "< 25)",
                                  shape.n, shape.m));
   const LatticePoint c{shape.n, shape.m};
   const Rim rim = make_rim(*steps, c);
+  const Cap cap = *make_cap(*steps);
   const double a = shape.edge, r = capped_tube_radius(shape.n, shape.m, a);
   const double length_c = std::sqrt(static_cast<double>(squared_length(c)));  // |C| in unit edges
   const double height_unit = 0.5 * std::sqrt(3.0) / length_c;                 // det(C, x) -> height in unit edges
 
-  const std::array<LatticePoint, 6> hex = hexagon(*steps);
-  const auto hex_faces = fan(hex);
-  long hex_triangles = 0;
-  for (const auto& h : hex_faces)
-    hex_triangles += det(hex[static_cast<std::size_t>(h[1])] - hex[static_cast<std::size_t>(h[0])],
-                         hex[static_cast<std::size_t>(h[2])] - hex[static_cast<std::size_t>(h[0])]);
-  // The tube's triangles: the two hexagons' and the belt's. Lowering T by one height step (det(C, T) by g) adds a
-  // strip of 2 g triangles to the belt. T is chosen for as many as cover the capsule asked (unit triangles of
-  // sqrt(3) / 4 a^2): its straight part then has the length asked.
+  // The tube's triangles: the two caps' and the belt's. Lowering T by one height step (det(C, T) by g) adds a strip
+  // of 2 g triangles to the belt. T is chosen for as many as cover the capsule asked (unit triangles of sqrt(3) / 4
+  // a^2): its straight part then has the length asked.
   const double unit_triangle = 0.25 * std::sqrt(3.0) * a * a;
   const double capsule_triangles = (4 * kPi * r * r + 2 * kPi * r * shape.length) / unit_triangle;
   const auto belt_count = [&](LatticePoint t) {
@@ -319,9 +292,9 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
     for (const auto& b : belt(rim, t)) count += det(b.at[1] - b.at[0], b.at[2] - b.at[0]);
     return count;
   };
-  const LatticePoint highest = *rim_offset(rim, kInfinity);  // (the rim's steps were chosen where some T fits)
+  const LatticePoint highest = *rim_offset(rim, kInfinity);  // (the steps were chosen where some T fits)
   const double wanted = static_cast<double>(det(c, highest)) -
-                        0.5 * (capsule_triangles - static_cast<double>(2 * hex_triangles + belt_count(highest)));
+                        0.5 * (capsule_triangles - static_cast<double>(2 * cap.triangles + belt_count(highest)));
   const long max_faces = 20 * kMaxTriangulationNumber;
   if (capsule_triangles > static_cast<double>(max_faces))
     throw InputError(fmt::format("capped tube ({}, {}): a length of {} needs more than {} triangles", shape.n, shape.m,
@@ -330,29 +303,33 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
   if (!offset) throw std::logic_error(fmt::format("capped tube ({}, {}): no belt fits", shape.n, shape.m));
   const LatticePoint t = *offset;
   const auto belt_triangles = belt(rim, t);
-  const long expected = 2 * hex_triangles + belt_count(t);
+  const long expected = 2 * cap.triangles + belt_count(t);
 
-  // The net: P_i = i mod 6, Q_j = 6 + (j mod 6); the upper hexagon, the belt, the lower hexagon (the upper turned
-  // by 180 degrees: P_i -> Q_-i, in the same chart).
-  const auto id = [](bool lower, long i) { return static_cast<int>(((i % 6) + 6) % 6) + (lower ? 6 : 0); };
+  // The net: P_i = i mod 5, Q_j = 5 + (j mod 5), the apexes 10 and 11; the upper cap, the belt, the lower cap (the
+  // upper turned by 180 degrees: P_i -> Q_-i, in the same chart).
+  const long kk = rim.k();
+  const auto id = [kk](bool lower, long i) { return static_cast<int>(((i % kk) + kk) % kk + (lower ? kk : 0)); };
+  const auto cap_corner = [&](bool lower, int corner) {
+    return corner == kk ? static_cast<int>(2 * kk + (lower ? 1 : 0)) : id(lower, lower ? -corner : corner);
+  };
   std::vector<NetFace> faces;
-  for (const auto& h : hex_faces)
-    faces.push_back({{id(false, h[0]), id(false, h[1]), id(false, h[2])},
-                     {hex[static_cast<std::size_t>(h[0])], hex[static_cast<std::size_t>(h[1])],
-                      hex[static_cast<std::size_t>(h[2])]}});
+  for (std::size_t f = 0; f < cap.faces.size(); ++f)
+    faces.push_back({{cap_corner(false, cap.faces[f][0]), cap_corner(false, cap.faces[f][1]),
+                      cap_corner(false, cap.faces[f][2])},
+                     cap.at[f]});
   if (belt_triangles.empty()) throw std::logic_error("capped tube: the belt of a longer tube does not fit");
   for (const auto& b : belt_triangles)
     faces.push_back({{id(b.lower[0], b.index[0]), id(b.lower[1], b.index[1]), id(b.lower[2], b.index[2])}, b.at});
-  for (const auto& h : hex_faces)
-    faces.push_back({{id(true, -h[0]), id(true, -h[1]), id(true, -h[2])},
-                     {hex[static_cast<std::size_t>(h[0])], hex[static_cast<std::size_t>(h[1])],
-                      hex[static_cast<std::size_t>(h[2])]}});
+  for (std::size_t f = 0; f < cap.faces.size(); ++f)
+    faces.push_back({{cap_corner(true, cap.faces[f][0]), cap_corner(true, cap.faces[f][1]),
+                      cap_corner(true, cap.faces[f][2])},
+                     cap.at[f]});
   const lattice_net::Folded folded = lattice_net::fold_lattice(12, faces);
 
   // Where the points go: the capsule of the tube's radius (or the sphere, for a cage too short for it) with the
   // area of the tube's triangles. The belt is the strip rolled onto it, from the middle between the rims (at half T's
-  // height) up and down along its meridian; a hexagon point a fraction rho of the way from the hexagon's centre to
-  // its border lies rho times as far from the pole as that border point on the rim, toward it.
+  // height) up and down along its meridian; a cap point a fraction rho of the way from the apex to the cap's border
+  // lies rho times as far from the pole as that border point on the rim, toward it.
   const double area = static_cast<double>(expected) * unit_triangle;
   const double straight = std::max(0.0, (area - 4 * kPi * r * r) / (2 * kPi * r));
   const double radius = straight > 0 ? r : std::sqrt(area / (4 * kPi)), half = 0.5 * straight;
@@ -361,13 +338,13 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
     return (i * c[0] + j * c[1] + 0.5 * (i * c[1] + j * c[0])) / length_c;
   };
   const auto height = [&](double i, double j) { return (j * c[0] - i * c[1]) * height_unit; };  // unit edges
-  const auto upper_rim = [&](double x) {  // the upper rim's height at x along C (its points P_0 .. P_6 from 0 to |C|)
+  const auto upper_rim = [&](double x) {  // the upper rim's height at x along C (its points P_0 .. P_k from 0 to |C|)
     x -= length_c * std::floor(x / length_c);
-    for (std::size_t k = 0; k < 6; ++k) {
+    for (std::size_t k = 0; k < cap.sides.size(); ++k) {
       const LatticePoint p0 = rim.at[k], p1 = rim.at[k + 1];
       const double x0 = east(static_cast<double>(p0[0]), static_cast<double>(p0[1]));
       const double x1 = east(static_cast<double>(p1[0]), static_cast<double>(p1[1]));
-      if (x <= x1 || k == 5) {
+      if (x <= x1 || k + 1 == cap.sides.size()) {
         const double u = std::clamp((x - x0) / (x1 - x0), 0.0, 1.0);
         return (1 - u) * height(static_cast<double>(p0[0]), static_cast<double>(p0[1])) +
                u * height(static_cast<double>(p1[0]), static_cast<double>(p1[1]));
@@ -395,14 +372,12 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
     }
     return Vec3(rho * std::cos(angle), rho * std::sin(angle), z);
   };
-  std::array<std::array<double, 2>, 6> corner_xy{};
-  std::array<double, 2> centre{0, 0};
-  for (std::size_t k = 0; k < 6; ++k) {
-    corner_xy[k] = cartesian(static_cast<double>(hex[k][0]), static_cast<double>(hex[k][1]));
-    centre[0] += corner_xy[k][0] / 6;
-    centre[1] += corner_xy[k][1] / 6;
-  }
-  const std::size_t hex_count = hex_faces.size(), belt_end = hex_count + belt_triangles.size();
+  std::vector<std::array<std::array<double, 2>, 2>> sides_xy;
+  for (const auto& side : cap.sides)
+    sides_xy.push_back({cartesian(static_cast<double>(side[0][0]), static_cast<double>(side[0][1])),
+                        cartesian(static_cast<double>(side[1][0]), static_cast<double>(side[1][1]))});
+  const std::array<double, 2> centre{0, 0};  // the apex
+  const std::size_t cap_count = cap.faces.size(), belt_end = cap_count + belt_triangles.size();
   std::vector<Vec3> points(folded.places.size());
   for (std::size_t v = 0; v < points.size(); ++v) {
     const auto& place = folded.places[v];
@@ -413,7 +388,7 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
       pj += place.weights[k] * static_cast<double>(f.at[k][1]);
     }
     const auto face = static_cast<std::size_t>(place.face);
-    if (face >= hex_count && face < belt_end) {
+    if (face >= cap_count && face < belt_end) {
       const double x = east(pi, pj);
       points[v] = on_capsule(0.5 * meridian - (height(pi, pj) - 0.5 * t_height) * a, x);
       continue;
@@ -424,9 +399,9 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
     if (dx * dx + dy * dy > 1e-18) {
       // The ray from the centre through the point meets side k at u: centre + s d = p_k + u (p_k+1 - p_k).
       double best_s = kInfinity;
-      for (std::size_t k = 0; k < 6; ++k) {
-        const auto& p0 = corner_xy[k];
-        const auto& p1 = corner_xy[(k + 1) % 6];
+      for (std::size_t k = 0; k < sides_xy.size(); ++k) {
+        const auto& p0 = sides_xy[k][0];
+        const auto& p1 = sides_xy[k][1];
         const double ex = p1[0] - p0[0], ey = p1[1] - p0[1];
         const double den = dx * (-ey) - dy * (-ex);
         if (std::abs(den) < 1e-15) continue;
@@ -440,7 +415,7 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
       }
       rho = std::min(1.0, 1 / best_s);
     }
-    if (face < hex_count) {
+    if (face < cap_count) {
       points[v] = on_capsule(rho * rim_from_pole(x), x);
     } else {  // the lower cap: the upper turned by 180 degrees about T / 2
       points[v] = on_capsule(meridian - rho * rim_from_pole(x), t_east - x);
@@ -450,11 +425,11 @@ CappedTube make_ring_capped_tube(const CappedTubeShape& shape) {
   CappedTube out;
   out.mesh = capsule_mesh(points, folded.triangles, expected, shape.n, shape.m, radius, half);
   out.periods = 0;
-  out.ring_caps = true;
+  out.caps = CapKind::apex;
   out.radius = r;
   out.straight_length = straight;
   out.period = capped_tube_period(shape.n, shape.m, a);
   return out;
 }
 
-}  // namespace carbonmesh::ring_cap
+}  // namespace carbonmesh::apex_cap
