@@ -41,6 +41,7 @@ using Steps = std::array<LatticePoint, 5>;  // f_0 .. f_4
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr long kRim = 5;  // the pentagons on a cap's rim
 
 // Twice the dot product of two lattice vectors (unit edges): exact in integers.
 long dot2(LatticePoint a, LatticePoint b) { return 2 * a[0] * b[0] + 2 * a[1] * b[1] + a[0] * b[1] + a[1] * b[0]; }
@@ -59,10 +60,9 @@ struct Rim {
   Steps steps{};
   LatticePoint chiral{};
   std::array<LatticePoint, 6> at{};  // P_0 = 0 .. P_5 = C
-  long k() const { return 5; }
   LatticePoint point(long i) const {
-    const long q = static_cast<long>(std::floor(static_cast<double>(i) / static_cast<double>(k())));
-    return at[static_cast<std::size_t>(i - k() * q)] + q * chiral;
+    const long q = static_cast<long>(std::floor(static_cast<double>(i) / static_cast<double>(kRim)));
+    return at[static_cast<std::size_t>(i - kRim * q)] + q * chiral;
   }
 };
 
@@ -132,7 +132,7 @@ std::vector<BeltTriangle> belt(const Rim& rim, LatticePoint t) {
   const LatticePoint c = rim.chiral;
   const auto q = [&](long j) { return t - rim.point(-j); };
   long top_low = std::numeric_limits<long>::max(), bottom_high = std::numeric_limits<long>::min();
-  for (long i = 0; i < rim.k(); ++i) {
+  for (long i = 0; i < kRim; ++i) {
     top_low = std::min(top_low, det(c, rim.point(i)));
     bottom_high = std::max(bottom_high, det(c, q(i)));
   }
@@ -143,7 +143,7 @@ std::vector<BeltTriangle> belt(const Rim& rim, LatticePoint t) {
   while (dot2(q(j0 + 1), c) <= 0) ++j0;
   std::vector<BeltTriangle> out;
   long i = 0, j = j0;
-  const long k = rim.k();
+  const long k = kRim;
   while (i < k || j < j0 + k) {
     const bool top = j == j0 + k || (i < k && dot2(rim.point(i + 1), c) < dot2(q(j + 1), c));
     BeltTriangle b;
@@ -164,12 +164,6 @@ long smallest_triangle(const std::vector<BeltTriangle>& triangles) {
   long s = std::numeric_limits<long>::max();
   for (const auto& b : triangles) s = std::min(s, det(b.at[1] - b.at[0], b.at[2] - b.at[0]));
   return s;
-}
-
-// The translation vector of the tube (n, m), pointing from the upper rim to the lower.
-LatticePoint tube_period(int n, int m) {
-  const long d = std::gcd(2L * m + n, 2L * n + m);
-  return {(2L * m + n) / d, -(2L * n + m) / d};
 }
 
 long floor_div(long a, long b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
@@ -195,11 +189,11 @@ std::optional<LatticePoint> rim_offset(const Rim& rim, double wanted) {
     down = {-a * t0, -a * s0};  // det(along, down) = -a (s0 along0 - t0 along1) = -a^2 = -1
   }
   long top_low = std::numeric_limits<long>::max();
-  for (long i = 0; i < rim.k(); ++i) top_low = std::min(top_low, det(c, rim.point(i)));
+  for (long i = 0; i < kRim; ++i) top_low = std::min(top_low, det(c, rim.point(i)));
   // The lower rim (heights det(C, T) - those of the upper) is wholly below the upper for det(C, T) < 2 top_low.
   const long highest = floor_div(2 * top_low - 1, g);
   const long start = std::isfinite(wanted) ? std::min(highest, std::lround(wanted / static_cast<double>(g))) : highest;
-  const long period_height = -det(c, tube_period(static_cast<int>(c[0]), static_cast<int>(c[1])));
+  const long period_height = -det(c, translation_vector(c[0], c[1]));
   for (long h = start; h >= start - period_height / g - 1; --h) {
     std::optional<LatticePoint> best;
     long best_smallest = 0;
@@ -307,7 +301,7 @@ CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
 
   // The net: P_i = i mod 5, Q_j = 5 + (j mod 5), the apexes 10 and 11; the upper cap, the belt, the lower cap (the
   // upper turned by 180 degrees: P_i -> Q_-i, in the same chart).
-  const long kk = rim.k();
+  const long kk = kRim;
   const auto id = [kk](bool lower, long i) { return static_cast<int>(((i % kk) + kk) % kk + (lower ? kk : 0)); };
   const auto cap_corner = [&](bool lower, int corner) {
     return corner == kk ? static_cast<int>(2 * kk + (lower ? 1 : 0)) : id(lower, lower ? -corner : corner);

@@ -17,6 +17,10 @@ namespace carbonmesh {
 TriMesh capsule_mesh(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles, long expected,
                      int n, int m, double radius, double half);
 
+// The tube (n, m)'s translation vector, square to C = n e1 + m e2, pointing from the upper rim to the lower (toward
+// -det(C, .)): ((2m + n) / d, -(2n + m) / d), d = gcd(2m + n, 2n + m).
+lattice_net::LatticePoint translation_vector(long n, long m);
+
 namespace apex_cap {
 
 // The cap's rim on the unrolled tube: the steps f_0 .. f_4 from pentagon to pentagon, C = n e1 + m e2 their sum. The

@@ -46,8 +46,7 @@ Layout layout(int n, int m) {
   const long h = n / 5, k = m / 5;
   out.w = {h, k};
   out.T = h * h + h * k + k * k;
-  const long d = std::gcd(2 * k + h, 2 * h + k);
-  out.period = {(2 * k + h) / d, -(2 * h + k) / d};  // square to w, pointing from the U ring to the L ring
+  out.period = translation_vector(h, k);  // square to w, pointing from the U ring to the L ring
   out.period_triangles = 10 * lattice_net::det(out.period, out.w);  // 5 parallelograms of 2 det triangles each
   return out;
 }
@@ -105,11 +104,14 @@ const char* cap_kind_description(CapKind kind) {
 
 bool icosahedral_caps(int n, int m) { return n % 5 == 0 && m % 5 == 0; }
 
+LatticePoint translation_vector(long n, long m) {
+  const long d = std::gcd(2 * m + n, 2 * n + m);
+  return {(2 * m + n) / d, -(2 * n + m) / d};
+}
+
 double capped_tube_period(int n, int m, double edge) {
   check_capped_tube(n, m);
-  const long d = std::gcd(2L * m + n, 2L * n + m);
-  const LatticePoint period{(2L * m + n) / d, -(2L * n + m) / d};
-  return edge * std::sqrt(static_cast<double>(lattice_net::squared_length(period)));
+  return edge * std::sqrt(static_cast<double>(lattice_net::squared_length(translation_vector(n, m))));
 }
 
 CappedTube make_capped_tube(const CappedTubeShape& shape) {

@@ -349,7 +349,7 @@ inline nlohmann::json cut_capped_tube(TriMesh& mesh, std::optional<TriMesh>& sur
 inline std::string lattice_shortfall(const nlohmann::json& lattice, double percent) {
   const std::string kind = lattice.value("kind", "");
   if (kind == "capped_tube") {
-    if (lattice["triangulation_number"].is_null())
+    if (lattice.value("caps", "") == "apex")
       return fmt::format("a capped tube has whole rows of the lattice, and the ({}, {}) tube has a radius of {:.4f} A "
                          "and a straight part of {:.4f} A where the input has {:.4f} A and {:.4f} A",
                          lattice["chirality"][0].get<int>(), lattice["chirality"][1].get<int>(),
