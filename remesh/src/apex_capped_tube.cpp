@@ -301,10 +301,9 @@ CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
 
   // The net: P_i = i mod 5, Q_j = 5 + (j mod 5), the apexes 10 and 11; the upper cap, the belt, the lower cap (the
   // upper turned by 180 degrees: P_i -> Q_-i, in the same chart).
-  const long kk = kRim;
-  const auto id = [kk](bool lower, long i) { return static_cast<int>(((i % kk) + kk) % kk + (lower ? kk : 0)); };
+  const auto id = [](bool lower, long i) { return static_cast<int>(((i % kRim) + kRim) % kRim + (lower ? kRim : 0)); };
   const auto cap_corner = [&](bool lower, int corner) {
-    return corner == kk ? static_cast<int>(2 * kk + (lower ? 1 : 0)) : id(lower, lower ? -corner : corner);
+    return corner == kRim ? static_cast<int>(2 * kRim + (lower ? 1 : 0)) : id(lower, lower ? -corner : corner);
   };
   std::vector<NetFace> faces;
   for (std::size_t f = 0; f < cap.faces.size(); ++f)
