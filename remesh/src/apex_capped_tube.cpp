@@ -57,7 +57,6 @@ double signed_turn(LatticePoint a, LatticePoint b) {  // the angle from a to b, 
 
 // The polyline through five of the upper cap's pentagons, P_i for any i (P_i+5 = P_i + C).
 struct Rim {
-  Steps steps{};
   LatticePoint chiral{};
   std::array<LatticePoint, 6> at{};  // P_0 = 0 .. P_5 = C
   LatticePoint point(long i) const {
@@ -68,19 +67,20 @@ struct Rim {
 
 Rim make_rim(const Steps& f, LatticePoint chiral) {
   Rim r;
-  r.steps = f;
   r.chiral = chiral;
   r.at[0] = {0, 0};
   for (std::size_t i = 0; i < 5; ++i) r.at[i + 1] = r.at[i] + f[i];
   return r;
 }
 
+// Twice a lattice triangle's area in unit triangles: the unit triangles it holds.
+long unit_triangles(const std::array<LatticePoint, 3>& at) { return det(at[1] - at[0], at[2] - at[0]); }
+
 // The cap above the rim, in one lattice chart with the apex at 0: its 5 triangles (P_i, P_i+1, apex) over the ring's
-// corners 0 .. 4 and the apex 5, and its border, side i over the rim's step i.
+// corners 0 .. 4 and the apex 5; triangle i's far side lies over the rim's step i.
 struct Cap {
   std::vector<std::array<int, 3>> faces;
   std::vector<std::array<LatticePoint, 3>> at;
-  std::vector<std::array<LatticePoint, 2>> sides;
   long triangles = 0;
 };
 
@@ -102,7 +102,6 @@ std::optional<Cap> make_cap(const Steps& f) {
     around += signed_turn(p[i], p[i + 1]);
     cap.faces.push_back({static_cast<int>(i), static_cast<int>((i + 1) % 5), 5});
     cap.at.push_back({p[i], p[i + 1], LatticePoint{0, 0}});
-    cap.sides.push_back({p[i], p[i + 1]});
     cap.triangles += det(p[i], p[i + 1]);
   }
   if (std::abs(around - 5 * kPi / 3) > 1e-9) return std::nullopt;
@@ -154,7 +153,7 @@ std::vector<BeltTriangle> belt(const Rim& rim, LatticePoint t) {
       b = {{true, true, false}, {j, j + 1, i}, {q(j), q(j + 1), rim.point(i)}};
       ++j;
     }
-    if (det(b.at[1] - b.at[0], b.at[2] - b.at[0]) <= 0) return {};
+    if (unit_triangles(b.at) <= 0) return {};
     out.push_back(b);
   }
   return out;
@@ -162,8 +161,14 @@ std::vector<BeltTriangle> belt(const Rim& rim, LatticePoint t) {
 
 long smallest_triangle(const std::vector<BeltTriangle>& triangles) {
   long s = std::numeric_limits<long>::max();
-  for (const auto& b : triangles) s = std::min(s, det(b.at[1] - b.at[0], b.at[2] - b.at[0]));
+  for (const auto& b : triangles) s = std::min(s, unit_triangles(b.at));
   return s;
+}
+
+long triangle_count(const std::vector<BeltTriangle>& triangles) {
+  long count = 0;
+  for (const auto& b : triangles) count += unit_triangles(b.at);
+  return count;
 }
 
 long floor_div(long a, long b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
@@ -281,14 +286,9 @@ CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
   // a^2): its straight part then has the length asked.
   const double unit_triangle = 0.25 * std::sqrt(3.0) * a * a;
   const double capsule_triangles = (4 * kPi * r * r + 2 * kPi * r * shape.length) / unit_triangle;
-  const auto belt_count = [&](LatticePoint t) {
-    long count = 0;
-    for (const auto& b : belt(rim, t)) count += det(b.at[1] - b.at[0], b.at[2] - b.at[0]);
-    return count;
-  };
   const LatticePoint highest = *rim_offset(rim, kInfinity);  // (the steps were chosen where some T fits)
   const double wanted = static_cast<double>(det(c, highest)) -
-                        0.5 * (capsule_triangles - static_cast<double>(2 * cap.triangles + belt_count(highest)));
+                        0.5 * (capsule_triangles - static_cast<double>(2 * cap.triangles + triangle_count(belt(rim, highest))));
   const long max_faces = 20 * kMaxTriangulationNumber;
   if (capsule_triangles > static_cast<double>(max_faces))
     throw InputError(fmt::format("capped tube ({}, {}): a length of {} needs more than {} triangles", shape.n, shape.m,
@@ -297,7 +297,7 @@ CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
   if (!offset) throw std::logic_error(fmt::format("capped tube ({}, {}): no belt fits", shape.n, shape.m));
   const LatticePoint t = *offset;
   const auto belt_triangles = belt(rim, t);
-  const long expected = 2 * cap.triangles + belt_count(t);
+  const long expected = 2 * cap.triangles + triangle_count(belt_triangles);
 
   // The net: P_i = i mod 5, Q_j = 5 + (j mod 5), the apexes 10 and 11; the upper cap, the belt, the lower cap (the
   // upper turned by 180 degrees: P_i -> Q_-i, in the same chart).
@@ -322,7 +322,7 @@ CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
   // Where the points go: the capsule of the tube's radius (or the sphere, for a cage too short for it) with the
   // area of the tube's triangles. The belt is the strip rolled onto it, from the middle between the rims (at half T's
   // height) up and down along its meridian; a cap point a fraction rho of the way from the apex to the cap's border
-  // lies rho times as far from the pole as that border point on the rim, toward it.
+  // (1 - its weight on the apex) lies rho times as far from the pole as that border point on the rim, toward it.
   const double area = static_cast<double>(expected) * unit_triangle;
   const double straight = std::max(0.0, (area - 4 * kPi * r * r) / (2 * kPi * r));
   const double radius = straight > 0 ? r : std::sqrt(area / (4 * kPi)), half = 0.5 * straight;
@@ -333,11 +333,11 @@ CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
   const auto height = [&](double i, double j) { return (j * c[0] - i * c[1]) * height_unit; };  // unit edges
   const auto upper_rim = [&](double x) {  // the upper rim's height at x along C (its points P_0 .. P_k from 0 to |C|)
     x -= length_c * std::floor(x / length_c);
-    for (std::size_t k = 0; k < cap.sides.size(); ++k) {
+    for (std::size_t k = 0; k < static_cast<std::size_t>(kRim); ++k) {
       const LatticePoint p0 = rim.at[k], p1 = rim.at[k + 1];
       const double x0 = east(static_cast<double>(p0[0]), static_cast<double>(p0[1]));
       const double x1 = east(static_cast<double>(p1[0]), static_cast<double>(p1[1]));
-      if (x <= x1 || k + 1 == cap.sides.size()) {
+      if (x <= x1 || k + 1 == static_cast<std::size_t>(kRim)) {
         const double u = std::clamp((x - x0) / (x1 - x0), 0.0, 1.0);
         return (1 - u) * height(static_cast<double>(p0[0]), static_cast<double>(p0[1])) +
                u * height(static_cast<double>(p1[0]), static_cast<double>(p1[1]));
@@ -365,11 +365,6 @@ CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
     }
     return Vec3(rho * std::cos(angle), rho * std::sin(angle), z);
   };
-  std::vector<std::array<std::array<double, 2>, 2>> sides_xy;
-  for (const auto& side : cap.sides)
-    sides_xy.push_back({cartesian(static_cast<double>(side[0][0]), static_cast<double>(side[0][1])),
-                        cartesian(static_cast<double>(side[1][0]), static_cast<double>(side[1][1]))});
-  const std::array<double, 2> centre{0, 0};  // the apex
   const std::size_t cap_count = cap.faces.size(), belt_end = cap_count + belt_triangles.size();
   std::vector<Vec3> points(folded.places.size());
   for (std::size_t v = 0; v < points.size(); ++v) {
@@ -386,28 +381,13 @@ CappedTube make_apex_capped_tube(const CappedTubeShape& shape) {
       points[v] = on_capsule(0.5 * meridian - (height(pi, pj) - 0.5 * t_height) * a, x);
       continue;
     }
-    const auto xy = cartesian(pi, pj);
-    const double dx = xy[0] - centre[0], dy = xy[1] - centre[1];
-    double rho = 0, x = 0;
-    if (dx * dx + dy * dy > 1e-18) {
-      // The ray from the centre through the point meets side k at u: centre + s d = p_k + u (p_k+1 - p_k).
-      double best_s = kInfinity;
-      for (std::size_t k = 0; k < sides_xy.size(); ++k) {
-        const auto& p0 = sides_xy[k][0];
-        const auto& p1 = sides_xy[k][1];
-        const double ex = p1[0] - p0[0], ey = p1[1] - p0[1];
-        const double den = dx * (-ey) - dy * (-ex);
-        if (std::abs(den) < 1e-15) continue;
-        const double bx = p0[0] - centre[0], by = p0[1] - centre[1];
-        const double s = (bx * (-ey) - by * (-ex)) / den, u = (dx * by - dy * bx) / den;
-        if (s <= 0 || u < -1e-12 || u > 1 + 1e-12 || s >= best_s) continue;
-        best_s = s;
-        const LatticePoint from = rim.at[k], step = (*steps)[k];
-        x = east(static_cast<double>(from[0]) + u * static_cast<double>(step[0]),
-                 static_cast<double>(from[1]) + u * static_cast<double>(step[1]));
-      }
-      rho = std::min(1.0, 1 / best_s);
-    }
+    // Cap triangle i is (P_i, P_i+1, apex): the ray from the apex through the point meets side i where the weights
+    // of P_i and P_i+1 alone put it.
+    const std::size_t i = face < cap_count ? face : face - belt_end;
+    const double rho = 1 - place.weights[2], u = rho > 0 ? place.weights[1] / rho : 0;
+    const LatticePoint from = rim.at[i], step = (*steps)[i];
+    const double x = east(static_cast<double>(from[0]) + u * static_cast<double>(step[0]),
+                          static_cast<double>(from[1]) + u * static_cast<double>(step[1]));
     if (face < cap_count) {
       points[v] = on_capsule(rho * rim_from_pole(x), x);
     } else {  // the lower cap: the upper turned by 180 degrees about T / 2
